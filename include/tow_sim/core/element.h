@@ -1,0 +1,93 @@
+// One rigid element of the chain: a cable segment (lambda = 1..nu) or the end body (lambda = nu+1).
+// Every element is described to the solver the same way: its Newton-Euler equations about its CG in
+// world axes, M_body [a_G; dw/dt] = wrench + (tension forces and moments), with the accelerations of
+// its CG and its angular acceleration linear in the accelerations of its two joints (no roll).
+#pragma once
+
+#include <Eigen/Core>
+
+#include "tow_sim/core/params.h"
+
+namespace tow_sim
+{
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
+using Vector6d = Eigen::Matrix<double, 6, 1>;
+
+// Element kinematics from its forward joint x_f (toward the ship) and aft joint x_a (Appendix A).
+struct ElementKinematics
+{
+  Eigen::Vector3d x_f, x_a, v_f, v_a;  // [m], [m/s] joints, world
+  Eigen::Vector3d s;                   // [-] s_lambda, unit axis from x_f to x_a
+  double length = 0.0;                 // [m] |x_a - x_f| (equals d_lambda up to the length error)
+  Eigen::Vector3d s_dot;               // [1/s] ds/dt
+  Eigen::Vector3d omega;               // [rad/s] s x ds/dt (no roll)
+
+  static ElementKinematics fromJoints(const Eigen::Vector3d& x_f, const Eigen::Vector3d& x_a,
+                                      const Eigen::Vector3d& v_f, const Eigen::Vector3d& v_a);
+  // A point a fraction eta of the way from x_f to x_a: position and velocity.
+  Eigen::Vector3d pointAt(double eta) const { return x_f + eta * (x_a - x_f); }
+  Eigen::Vector3d velocityAt(double eta) const { return v_f + eta * (v_a - v_f); }
+};
+
+// Newton-Euler description of one element about its CG, world axes.
+struct BodyDynamics
+{
+  Matrix6d mass;       // [kg, kg m, kg m^2] rigid-body plus added mass: [F; M] = mass [a_G; dw/dt]
+  Vector6d wrench;     // [N; N m] all loads but the joint tensions: force at the CG, moment about it
+  double cg_fraction;  // [-] gamma: the CG lies at x_f + gamma (x_a - x_f)
+};
+
+// Constant description of a uniform cable segment (physics.md §4).
+struct CableSegmentModel
+{
+  double length = 0.0;          // [m] d_lambda
+  double mass = 0.0;            // [kg] m_lambda = w d / g (mass in air)
+  double net_weight = 0.0;      // [N] (w - b) d, weight in water
+  double c1 = 0.0;              // [N s^2/m^3] tangential drag constant
+  double c2 = 0.0;              // [N s^2/m^3] normal drag constant
+  double added_mass = 0.0;      // [kg] e_lambda, Walton-Polachek, acts on the normal acceleration
+  TangentialDragModel tangential_model = TangentialDragModel::kPode;
+  double smoothing_speed = 0.01;  // [m/s] width of the smooth sign of u.s (Pode model)
+
+  static CableSegmentModel fromParams(const CableParams& cable, const Environment& env,
+                                      const NumericsParams& numerics);
+};
+
+// Velocity forces of a cylinder-like element through the water (Appendix D), evaluated at the element
+// centre: normal drag, tangential drag and the rotation-drag moment M_V. Returns force, adds moment.
+struct VelocityForces
+{
+  Eigen::Vector3d force;   // [N] at the element centre
+  Eigen::Vector3d moment;  // [N m] couple
+};
+VelocityForces velocityForces(const ElementKinematics& k, const Eigen::Vector3d& current_W, double c1, double c2,
+                              TangentialDragModel model, double smoothing_speed);
+
+void cableSegmentDynamics(const CableSegmentModel& seg, const ElementKinematics& k, const Environment& env,
+                          BodyDynamics& out);
+
+// Element nu+1. Implementations: RigidEndElement here; the full towed vehicle plugs in the same way.
+class EndBody
+{
+public:
+  virtual ~EndBody() = default;
+  virtual double length() const = 0;  // [m] d_{nu+1}, bail to tail point
+  virtual void dynamics(const ElementKinematics& k, const Environment& env, BodyDynamics& out) const = 0;
+};
+
+// Axisymmetric rigid end body: weight at the CG, buoyancy at the CB, cable-like velocity forces and
+// Approach A added mass at the bail-tail midpoint.
+class RigidEndElement : public EndBody
+{
+public:
+  RigidEndElement(const EndElementParams& params, const NumericsParams& numerics);
+  double length() const override { return p_.length; }
+  void dynamics(const ElementKinematics& k, const Environment& env, BodyDynamics& out) const override;
+  const EndElementParams& params() const { return p_; }
+
+private:
+  EndElementParams p_;
+  double smoothing_speed_;
+};
+
+}  // namespace tow_sim

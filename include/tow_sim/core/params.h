@@ -1,0 +1,89 @@
+// Constant model parameters of the towed system: cable, end element, water and numerics.
+// Plain structs with SI defaults; validate() throws std::invalid_argument naming the parameter,
+// the value and the allowed range. Symbols follow Strandhagen & Thomas (1963).
+#pragma once
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+
+namespace tow_sim
+{
+// How the tangential (skin-friction) drag of a cable element depends on the flow (physics.md §4).
+enum class TangentialDragModel
+{
+  kPode,      // report: magnitude C1 d |u|^2 whatever the orientation, along s against the tangential flow
+  kQuadratic  // -C1 d |u.s| (u.s) s
+};
+
+struct Environment
+{
+  double gravity = 9.81;                              // [m/s^2] g, 0 .. 100
+  double water_density = 1025.0;                      // [kg/m^3] rho, 0 (vacuum) .. 2000
+  Eigen::Vector3d current_W = Eigen::Vector3d::Zero();  // [m/s] uniform current, world ENU, |.| <= 20
+};
+
+struct CableParams
+{
+  double length = 500.0;                  // [m] total cable length L, > 0 .. 1e5
+  int segments = 100;                     // [-] number of rigid segments nu, 1 .. 100000
+  double diameter = 0.02;                 // [m] D, > 0 .. 1
+  double mass_per_length = 1.0;           // [kg/m] in air, > 0 .. 1000
+  double normal_drag_coefficient = 1.2;   // [-] C_dn, >= 0 .. 10 (C2 = rho C_dn D / 2)
+  double tangential_drag_coefficient = 0.01;  // [-] C_dt, >= 0 .. 1 (C1 = rho C_dt pi D / 2)
+  std::optional<double> c1;               // [N s^2/m^3] C1 given directly (overrides C_dt), >= 0
+  std::optional<double> c2;               // [N s^2/m^3] C2 given directly (overrides C_dn), >= 0
+  double added_mass_coefficient = 1.0;    // [-] C_a, >= 0 .. 10 (e = C_a rho pi D^2/4 d)
+  TangentialDragModel tangential_drag_model = TangentialDragModel::kPode;
+
+  double segmentLength() const { return length / segments; }
+  double c1Value(const Environment& env) const;  // [N s^2/m^3]
+  double c2Value(const Environment& env) const;  // [N s^2/m^3]
+};
+
+// The simple rigid end element (element nu+1) of the cable core: an axisymmetric rigid body on the
+// axis bail -> tail point, with weight at its CG, buoyancy at its CB and cable-like velocity forces.
+// Distances are measured from the bail (cable attachment) aft along the body axis.
+struct EndElementParams
+{
+  double length = 2.0;                  // [m] d_{nu+1}, bail to tail point, > 0 .. 100
+  double mass = 200.0;                  // [kg] in air, > 0 .. 1e6
+  double displaced_volume = 0.1414;     // [m^3] buoyancy rho g V acts at the CB, >= 0 .. 1e3
+  double cg_from_bail = 1.0;            // [m] d_{nu+2}, 0 .. length
+  double cb_from_bail = 1.0;            // [m] d_{nu+6}, 0 .. length
+  std::optional<double> transverse_inertia;  // [kg m^2] about the CG; default: thin rod over `length`
+  double diameter = 0.3;                // [m] for drag and added mass, > 0 .. 10
+  double normal_drag_coefficient = 1.0;      // [-] >= 0 .. 10
+  double tangential_drag_coefficient = 0.05;  // [-] >= 0 .. 10
+  double added_mass_coefficient = 1.0;       // [-] >= 0 .. 10
+
+  double transverseInertia() const;  // [kg m^2] about the CG
+};
+
+enum class StepperType
+{
+  kDopri5,  // adaptive Dormand-Prince 5(4) with error control (default)
+  kRk4      // classical Runge-Kutta with a fixed step, for hard real time
+};
+
+struct NumericsParams
+{
+  StepperType stepper = StepperType::kDopri5;
+  double abs_tol = 1e-7;        // [-] absolute error tolerance (m, m/s), > 0 .. 1
+  double rel_tol = 1e-7;        // [-] relative error tolerance, > 0 .. 1
+  double max_step = 0.5;        // [s] largest adaptive step, > 0 .. 10
+  double fixed_step = 0.01;     // [s] step of the fixed-step stepper, > 0 .. 1
+  double tangential_smoothing_speed = 0.01;  // [m/s] Pode drag changes sign smoothly over this |u.s|, > 0 .. 1
+};
+
+// Each throws std::invalid_argument("<prefix>.<name> = <value> is out of range: must be ...").
+void validate(const Environment& env, const std::string& prefix = "environment");
+void validate(const CableParams& cable, const std::string& prefix = "cable");
+void validate(const EndElementParams& end, const std::string& prefix = "end_element");
+void validate(const NumericsParams& numerics, const std::string& prefix = "numerics");
+
+// Throws std::invalid_argument unless lo <= value <= hi (or lo < value where lo_open) and finite.
+void requireInRange(const std::string& name, double value, double lo, double hi, const char* unit,
+                    bool lo_open = false);
+
+}  // namespace tow_sim

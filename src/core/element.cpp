@@ -1,0 +1,133 @@
+#include "tow_sim/core/element.h"
+#include "tow_sim/core/geometry.h"
+
+#include <Eigen/Geometry>
+#include <cmath>
+
+namespace tow_sim
+{
+namespace
+{
+constexpr double kPi = 3.14159265358979323846;
+
+
+// Below this normal speed [m/s] the direction q of the normal flow is undefined; M_V vanishes there.
+constexpr double kTinySpeed = 1e-12;
+}  // namespace
+
+ElementKinematics ElementKinematics::fromJoints(const Eigen::Vector3d& x_f, const Eigen::Vector3d& x_a,
+                                                const Eigen::Vector3d& v_f, const Eigen::Vector3d& v_a)
+{
+  ElementKinematics k;
+  k.x_f = x_f;
+  k.x_a = x_a;
+  k.v_f = v_f;
+  k.v_a = v_a;
+  const Eigen::Vector3d delta = x_a - x_f;
+  k.length = delta.norm();
+  k.s = delta / k.length;
+  k.s_dot = (v_a - v_f) / k.length;
+  k.omega = k.s.cross(k.s_dot);
+  return k;
+}
+
+CableSegmentModel CableSegmentModel::fromParams(const CableParams& cable, const Environment& env,
+                                                const NumericsParams& numerics)
+{
+  CableSegmentModel m;
+  m.length = cable.segmentLength();
+  m.mass = cable.mass_per_length * m.length;
+  const double area = 0.25 * kPi * cable.diameter * cable.diameter;
+  m.net_weight = (cable.mass_per_length - env.water_density * area) * env.gravity * m.length;  // (w - b) d
+  m.c1 = cable.c1Value(env);
+  m.c2 = cable.c2Value(env);
+  m.added_mass = cable.added_mass_coefficient * env.water_density * area * m.length;
+  m.tangential_model = cable.tangential_drag_model;
+  m.smoothing_speed = numerics.tangential_smoothing_speed;
+  return m;
+}
+
+VelocityForces velocityForces(const ElementKinematics& k, const Eigen::Vector3d& current_W, double c1, double c2,
+                              TangentialDragModel model, double smoothing_speed)
+{
+  const double d = k.length;
+  const Eigen::Vector3d u = k.velocityAt(0.5) - current_W;  // u_lambda, through the water
+  const double u_t = u.dot(k.s);
+  const Eigen::Vector3d u_n = u - u_t * k.s;
+  const double u_n_norm = u_n.norm();
+
+  VelocityForces f;
+  // Normal drag, Appendix D: -C2 d |u_n| u_n.
+  f.force = -c2 * d * u_n_norm * u_n;
+  // Tangential drag along s, against the tangential flow.
+  if (model == TangentialDragModel::kPode)
+  {
+    const double smooth_sign = u_t / std::sqrt(u_t * u_t + smoothing_speed * smoothing_speed);
+    f.force -= c1 * d * u.squaredNorm() * smooth_sign * k.s;
+  }
+  else
+  {
+    f.force -= c1 * d * std::abs(u_t) * u_t * k.s;
+  }
+  // Rotation-drag moment, Appendix D: M_V = (C2 d^3 / 6) (u . (w x s)) (s x q), q = -u_n/|u_n|.
+  f.moment.setZero();
+  if (u_n_norm > kTinySpeed)
+  {
+    const Eigen::Vector3d q = -u_n / u_n_norm;
+    f.moment = (c2 * d * d * d / 6.0) * u.dot(k.omega.cross(k.s)) * k.s.cross(q);
+  }
+  return f;
+}
+
+void cableSegmentDynamics(const CableSegmentModel& seg, const ElementKinematics& k, const Environment& env,
+                          BodyDynamics& out)
+{
+  const Eigen::Matrix3d I3 = Eigen::Matrix3d::Identity();
+  const Eigen::Matrix3d P = I3 - k.s * k.s.transpose();  // projection normal to the axis
+  out.cg_fraction = 0.5;
+  out.mass.setZero();
+  // Walton-Polachek added mass acts on the normal acceleration of the centre (= CG).
+  out.mass.topLeftCorner<3, 3>() = seg.mass * I3 + seg.added_mass * P;
+  out.mass.bottomRightCorner<3, 3>() = (seg.mass * seg.length * seg.length / 12.0) * I3;
+
+  const VelocityForces vf = velocityForces(k, env.current_W, seg.c1, seg.c2, seg.tangential_model, seg.smoothing_speed);
+  out.wrench.head<3>() = vf.force - seg.net_weight * Eigen::Vector3d::UnitZ();
+  out.wrench.tail<3>() = vf.moment;
+}
+
+RigidEndElement::RigidEndElement(const EndElementParams& params, const NumericsParams& numerics)
+  : p_(params), smoothing_speed_(numerics.tangential_smoothing_speed)
+{
+  validate(p_);
+}
+
+void RigidEndElement::dynamics(const ElementKinematics& k, const Environment& env, BodyDynamics& out) const
+{
+  const Eigen::Matrix3d I3 = Eigen::Matrix3d::Identity();
+  const Eigen::Matrix3d P = I3 - k.s * k.s.transpose();
+  const double gamma = p_.cg_from_bail / p_.length;
+  out.cg_fraction = gamma;
+
+  const double area = 0.25 * kPi * p_.diameter * p_.diameter;
+  const double e = p_.added_mass_coefficient * env.water_density * area * p_.length;
+  // Approach A added mass acts at the bail-tail midpoint, r from the CG: F_A = -e P (a_G + dw/dt x r).
+  const Eigen::Vector3d r_mid = (0.5 - gamma) * p_.length * k.s;
+  const Eigen::Matrix3d R = skew(r_mid);
+  out.mass.topLeftCorner<3, 3>() = p_.mass * I3 + e * P;
+  out.mass.topRightCorner<3, 3>() = -e * R;
+  out.mass.bottomLeftCorner<3, 3>() = e * R;
+  out.mass.bottomRightCorner<3, 3>() = p_.transverseInertia() * I3 - e * R * R;
+
+  const double c1 = 0.5 * env.water_density * p_.tangential_drag_coefficient * kPi * p_.diameter;
+  const double c2 = 0.5 * env.water_density * p_.normal_drag_coefficient * p_.diameter;
+  const VelocityForces vf = velocityForces(k, env.current_W, c1, c2, TangentialDragModel::kPode, smoothing_speed_);
+
+  const Eigen::Vector3d weight = -p_.mass * env.gravity * Eigen::Vector3d::UnitZ();
+  const Eigen::Vector3d buoyancy = env.water_density * env.gravity * p_.displaced_volume * Eigen::Vector3d::UnitZ();
+  const Eigen::Vector3d r_cb = (p_.cb_from_bail - p_.cg_from_bail) * k.s;
+
+  out.wrench.head<3>() = weight + buoyancy + vf.force;
+  out.wrench.tail<3>() = r_cb.cross(buoyancy) + r_mid.cross(vf.force) + vf.moment;
+}
+
+}  // namespace tow_sim

@@ -1,0 +1,228 @@
+#include "tow_sim/core/simulator.h"
+
+#include <algorithm>
+#include <boost/numeric/odeint.hpp>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace tow_sim
+{
+namespace odeint = boost::numeric::odeint;
+
+namespace
+{
+// Smallest adaptive step [s] before the integration is declared failed.
+constexpr double kMinStep = 1e-10;
+
+bool allFinite(const std::vector<double>& y)
+{
+  return std::all_of(y.begin(), y.end(), [](double value) { return std::isfinite(value); });
+}
+}  // namespace
+
+ShipMotion constantVelocityShip(const Eigen::Vector3d& p0_W, const Eigen::Vector3d& v_W)
+{
+  return [p0_W, v_W](double t) {
+    ShipEndState s;
+    s.p_W = p0_W + t * v_W;
+    s.v_W = v_W;
+    return s;
+  };
+}
+
+ChainState straightChain(const ChainModel& model, const Eigen::Vector3d& tow_point_W,
+                         const Eigen::Vector3d& direction_W, const Eigen::Vector3d& velocity_W)
+{
+  const int n = model.jointCount();
+  ChainState state;
+  state.x.resize(3, n);
+  state.v.resize(3, n);
+  const Eigen::Vector3d dir = direction_W.normalized();
+  Eigen::Vector3d p = tow_point_W;
+  for (int e = 0; e < n; ++e)
+  {
+    p += model.elementLength(e) * dir;
+    state.x.col(e) = p;
+    state.v.col(e) = velocity_W;
+  }
+  return state;
+}
+
+double maxRelativeLengthError(const ChainModel& model, const Eigen::Vector3d& tow_point_W, const ChainState& state)
+{
+  double worst = 0.0;
+  Eigen::Vector3d x_f = tow_point_W;
+  for (int e = 0; e < model.elementCount(); ++e)
+  {
+    const double d = model.elementLength(e);
+    worst = std::max(worst, std::abs((state.x.col(e) - x_f).norm() / d - 1.0));
+    x_f = state.x.col(e);
+  }
+  return worst;
+}
+
+Simulator::Simulator(std::shared_ptr<ChainModel> model, ShipMotion ship)
+  : model_(std::move(model)), ship_(std::move(ship)), solver_(*model_)
+{
+  if (!ship_)
+    throw std::invalid_argument("Simulator: no ship motion given");
+  const int n = model_->jointCount();
+  y_.assign(6 * n, 0.0);
+  dydt_.assign(6 * n, 0.0);
+  tensions_.setZero(3, n);
+  accelerations_.setZero(3, n);
+  dt_ = std::min(model_->numerics().max_step, 0.01);
+}
+
+void Simulator::reset(double t, const ChainState& state)
+{
+  const int n = model_->jointCount();
+  if (state.x.cols() != n || state.v.cols() != n)
+  {
+    std::ostringstream os;
+    os << "initial state: expected " << n << " joints (segments + 1), got " << state.x.cols() << " positions and "
+       << state.v.cols() << " velocities";
+    throw std::invalid_argument(os.str());
+  }
+  if (!std::isfinite(t) || !state.x.allFinite() || !state.v.allFinite())
+    throw std::invalid_argument("initial state: time, positions and velocities must be finite");
+  t_ = t;
+  std::copy(state.x.data(), state.x.data() + 3 * n, y_.begin());
+  std::copy(state.v.data(), state.v.data() + 3 * n, y_.begin() + 3 * n);
+  project(t_);
+  refreshOutputs();
+  dt_ = std::min(model_->numerics().max_step, 0.01);
+}
+
+void Simulator::rhs(const StateVector& y, StateVector& dydt, double t)
+{
+  const int n = model_->jointCount();
+  Eigen::Map<const Eigen::Matrix3Xd> x(y.data(), 3, n);
+  Eigen::Map<const Eigen::Matrix3Xd> v(y.data() + 3 * n, 3, n);
+  Eigen::Map<Eigen::Matrix3Xd> x_dot(dydt.data(), 3, n);
+  Eigen::Map<Eigen::Matrix3Xd> a(dydt.data() + 3 * n, 3, n);
+  x_dot = v;
+  solver_.solve(ship_(t), x, v, a);
+}
+
+void Simulator::refreshOutputs()
+{
+  const int n = model_->jointCount();
+  Eigen::Map<const Eigen::Matrix3Xd> x(y_.data(), 3, n);
+  Eigen::Map<const Eigen::Matrix3Xd> v(y_.data() + 3 * n, 3, n);
+  solver_.solve(ship_(t_), x, v, accelerations_, &tensions_);
+  Eigen::Map<Eigen::Matrix3Xd>(dydt_.data(), 3, n) = v;
+  Eigen::Map<Eigen::Matrix3Xd>(dydt_.data() + 3 * n, 3, n) = accelerations_;
+}
+
+void Simulator::project(double t)
+{
+  // Sequentially from the ship: restore each element's length along its current direction, then
+  // remove the relative velocity along the element (s.(v_a - v_f) = 0).
+  const int n = model_->jointCount();
+  Eigen::Map<Eigen::Matrix3Xd> x(y_.data(), 3, n);
+  Eigen::Map<Eigen::Matrix3Xd> v(y_.data() + 3 * n, 3, n);
+  const ShipEndState ship = ship_(t);
+  Eigen::Vector3d x_f = ship.p_W;
+  Eigen::Vector3d v_f = ship.v_W;
+  for (int e = 0; e < n; ++e)
+  {
+    const Eigen::Vector3d s = (x.col(e) - x_f).normalized();
+    x.col(e) = x_f + model_->elementLength(e) * s;
+    v.col(e) -= s.dot(v.col(e) - v_f) * s;
+    x_f = x.col(e);
+    v_f = v.col(e);
+  }
+}
+
+double Simulator::lengthErrorOf(const StateVector& y, double t) const
+{
+  const int n = model_->jointCount();
+  ChainState s;
+  s.x = Eigen::Map<const Eigen::Matrix3Xd>(y.data(), 3, n);
+  s.v.resize(3, 0);
+  return maxRelativeLengthError(*model_, ship_(t).p_W, s);
+}
+
+double Simulator::lengthError() const { return lengthErrorOf(y_, t_); }
+
+StepReport Simulator::advanceTo(double t_end)
+{
+  if (!(t_end >= t_))
+  {
+    std::ostringstream os;
+    os << "advanceTo: target time " << t_end << " s is before the current time " << t_ << " s";
+    throw std::invalid_argument(os.str());
+  }
+  const NumericsParams& num = model_->numerics();
+  auto system = [this](const StateVector& y, StateVector& dydt, double t) { rhs(y, dydt, t); };
+  auto controlled = odeint::make_controlled(num.abs_tol, num.rel_tol, odeint::runge_kutta_dopri5<StateVector>());
+  odeint::runge_kutta4<StateVector> rk4;
+
+  StepReport report;
+  StateVector y_prev;
+  while (t_end - t_ > 1e-12 * std::max(1.0, std::abs(t_end)))
+  {
+    y_prev = y_;
+    const double t_prev = t_;
+    if (num.stepper == StepperType::kRk4)
+    {
+      const double h = std::min(num.fixed_step, t_end - t_);
+      rk4.do_step(system, y_, dydt_, t_, h);
+      t_ = h == t_end - t_ ? t_end : t_ + h;
+    }
+    else
+    {
+      const double remaining = t_end - t_;
+      const bool clamped = dt_ >= remaining;
+      double h = std::min({ dt_, remaining, num.max_step });
+      // dopri5 is first-same-as-last: dydt_ holds f(y_) and is advanced with the step.
+      if (controlled.try_step(system, y_, dydt_, t_, h) == odeint::fail)
+      {
+        ++report.rejected;
+        dt_ = h;
+        if (dt_ < kMinStep)
+          throw std::runtime_error("integration failed: the adaptive step fell below 1e-10 s at t = " +
+                                   std::to_string(t_) + " s");
+        continue;
+      }
+      if (!clamped || h > dt_)
+        dt_ = std::min(h, num.max_step);
+      if (clamped && remaining - (t_ - t_prev) < 1e-12)
+        t_ = t_end;
+    }
+    if (!allFinite(y_))
+    {
+      y_ = y_prev;
+      t_ = t_prev;
+      refreshOutputs();
+      throw std::runtime_error("integration diverged: non-finite state at t = " + std::to_string(t_) + " s");
+    }
+    ++report.steps;
+    report.max_length_error = std::max(report.max_length_error, lengthErrorOf(y_, t_));
+    project(t_);
+    refreshOutputs();
+  }
+  return report;
+}
+
+ChainState Simulator::state() const
+{
+  const int n = model_->jointCount();
+  ChainState s;
+  s.x = Eigen::Map<const Eigen::Matrix3Xd>(y_.data(), 3, n);
+  s.v = Eigen::Map<const Eigen::Matrix3Xd>(y_.data() + 3 * n, 3, n);
+  return s;
+}
+
+Eigen::Matrix3Xd Simulator::jointPositions() const
+{
+  const int n = model_->jointCount();
+  Eigen::Matrix3Xd p(3, n + 1);
+  p.col(0) = ship_(t_).p_W;
+  p.rightCols(n) = Eigen::Map<const Eigen::Matrix3Xd>(y_.data(), 3, n);
+  return p;
+}
+
+}  // namespace tow_sim
