@@ -1,0 +1,34 @@
+#include "core/chain_fixtures.h"
+
+#include <Eigen/Geometry>
+
+namespace tow_sim
+{
+namespace test
+{
+double chainEnergy(const ChainModel& model, const CableParams& cable, const EndElementParams& end, double gravity,
+                   const ShipEndState& ship, const ChainState& state)
+{
+  double energy = 0.0;
+  Eigen::Vector3d x_f = ship.p_W, v_f = ship.v_W;
+  for (int e = 0; e < model.elementCount(); ++e)
+  {
+    const bool is_end = e == model.segments();
+    const double d = model.elementLength(e);
+    const double m = is_end ? end.mass : cable.mass_per_length * d;
+    const double gamma = is_end ? end.cg_from_bail / end.length : 0.5;
+    const double inertia = is_end ? end.transverseInertia() : m * d * d / 12.0;
+    const Eigen::Vector3d x_a = state.x.col(e), v_a = state.v.col(e);
+    const Eigen::Vector3d x_g = x_f + gamma * (x_a - x_f);
+    const Eigen::Vector3d v_g = v_f + gamma * (v_a - v_f);
+    const Eigen::Vector3d s = (x_a - x_f).normalized();
+    const Eigen::Vector3d w = s.cross((v_a - v_f) / d);
+    energy += 0.5 * m * v_g.squaredNorm() + 0.5 * inertia * w.squaredNorm() + m * gravity * x_g.z();
+    x_f = x_a;
+    v_f = v_a;
+  }
+  return energy;
+}
+
+}  // namespace test
+}  // namespace tow_sim

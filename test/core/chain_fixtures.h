@@ -1,0 +1,44 @@
+// Helpers shared by the core tests: building models and the mechanical energy of a chain.
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+
+#include "tow_sim/core/simulator.h"
+
+namespace tow_sim
+{
+namespace test
+{
+inline std::shared_ptr<ChainModel> makeModel(const CableParams& cable, const EndElementParams& end,
+                                             const Environment& env, const NumericsParams& num = NumericsParams())
+{
+  return std::make_shared<ChainModel>(cable, std::make_shared<RigidEndElement>(end, num), env, num);
+}
+
+// An end element that is one more cable segment: same length, mass, diameter and coefficients.
+inline EndElementParams endLikeSegment(const CableParams& cable)
+{
+  EndElementParams e;
+  const double d = cable.segmentLength();
+  const double area = 0.25 * 3.14159265358979323846 * cable.diameter * cable.diameter;
+  e.length = d;
+  e.mass = cable.mass_per_length * d;
+  e.displaced_volume = area * d;
+  e.cg_from_bail = 0.5 * d;
+  e.cb_from_bail = 0.5 * d;
+  e.transverse_inertia = e.mass * d * d / 12.0;
+  e.diameter = cable.diameter;
+  e.normal_drag_coefficient = cable.normal_drag_coefficient;
+  e.tangential_drag_coefficient = cable.tangential_drag_coefficient;
+  e.added_mass_coefficient = cable.added_mass_coefficient;
+  return e;
+}
+
+// Kinetic plus potential energy of the rigid elements in vacuum, from positions and velocities only:
+// sum of 1/2 m |v_G|^2 + 1/2 I_t |w|^2 + m g z_G, w = s x ds/dt, I_t about the CG.
+double chainEnergy(const ChainModel& model, const CableParams& cable, const EndElementParams& end, double gravity,
+                   const ShipEndState& ship, const ChainState& state);
+
+}  // namespace test
+}  // namespace tow_sim

@@ -1,0 +1,97 @@
+#include "core/dense_reference.h"
+
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+
+namespace tow_sim
+{
+namespace test
+{
+namespace
+{
+Eigen::Matrix3d cross(const Eigen::Vector3d& r)
+{
+  Eigen::Matrix3d m;
+  m << 0.0, -r.z(), r.y(), r.z(), 0.0, -r.x(), -r.y(), r.x(), 0.0;
+  return m;
+}
+}  // namespace
+
+DenseSolution solveDense(const ChainModel& model, const ShipEndState& ship, const Eigen::Matrix3Xd& x,
+                         const Eigen::Matrix3Xd& v)
+{
+  const int n = model.elementCount();
+  const int size = 6 * n;
+  // Unknowns: a_j (joint x_{j+2}) at 3j, T_e (joint x_{e+1}) at 3n + 3e.
+  auto acc = [](int joint) { return 3 * joint; };
+  auto ten = [n](int element) { return 3 * n + 3 * element; };
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(size, size);
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(size);
+  const Eigen::Matrix3d I3 = Eigen::Matrix3d::Identity();
+
+  for (int e = 0; e < n; ++e)
+  {
+    const Eigen::Vector3d x_f = e == 0 ? ship.p_W : Eigen::Vector3d(x.col(e - 1));
+    const Eigen::Vector3d v_f = e == 0 ? ship.v_W : Eigen::Vector3d(v.col(e - 1));
+    const ElementKinematics k = ElementKinematics::fromJoints(x_f, x.col(e), v_f, v.col(e));
+    BodyDynamics body;
+    model.elementDynamics(e, k, body);
+    const double g = body.cg_fraction;
+    const double l = k.length;
+    const Eigen::Vector3d& s = k.s;
+
+    // a_G = (1-g) a_f + g a_a ; dw/dt = s x (a_a - a_f) / l   (no roll, Appendix A)
+    Eigen::Matrix<double, 6, 3> C_f, C_a;
+    C_f << (1.0 - g) * I3, -cross(s) / l;
+    C_a << g * I3, cross(s) / l;
+    const Eigen::Matrix<double, 6, 3> MC_f = body.mass * C_f;
+    const Eigen::Matrix<double, 6, 3> MC_a = body.mass * C_a;
+
+    // Two unit vectors normal to s for the angular-momentum rows.
+    Eigen::Vector3d e1 = s.unitOrthogonal();
+    Eigen::Vector3d e2 = s.cross(e1);
+    Eigen::Matrix<double, 2, 3> E;
+    E << e1.transpose(), e2.transpose();
+
+    const int row = 6 * e;
+    // Linear momentum: m a_G (+ added mass) - T_e + T_{e+1} = F*.
+    A.block<3, 3>(row, acc(e)) += MC_a.topRows<3>();
+    if (e > 0)
+      A.block<3, 3>(row, acc(e - 1)) += MC_f.topRows<3>();
+    else
+      b.segment<3>(row) -= MC_f.topRows<3>() * ship.a_W;
+    A.block<3, 3>(row, ten(e)) -= I3;
+    if (e + 1 < n)
+      A.block<3, 3>(row, ten(e + 1)) += I3;
+    b.segment<3>(row) += body.wrench.head<3>();
+
+    // Angular momentum about the CG, normal to s:
+    // I dw/dt (+ added mass) + s x (g l T_e + (1-g) l T_{e+1}) = M*.
+    A.block<2, 3>(row + 3, acc(e)) += E * MC_a.bottomRows<3>();
+    if (e > 0)
+      A.block<2, 3>(row + 3, acc(e - 1)) += E * MC_f.bottomRows<3>();
+    else
+      b.segment<2>(row + 3) -= E * MC_f.bottomRows<3>() * ship.a_W;
+    A.block<2, 3>(row + 3, ten(e)) += E * cross(s) * (g * l);
+    if (e + 1 < n)
+      A.block<2, 3>(row + 3, ten(e + 1)) += E * cross(s) * ((1.0 - g) * l);
+    b.segment<2>(row + 3) += E * body.wrench.tail<3>();
+
+    // Length constraint: s.(a_a - a_f) = -|v_a - v_f|^2 / l.
+    A.block<1, 3>(row + 5, acc(e)) += s.transpose();
+    if (e > 0)
+      A.block<1, 3>(row + 5, acc(e - 1)) -= s.transpose();
+    else
+      b(row + 5) += s.dot(ship.a_W);
+    b(row + 5) -= (k.v_a - k.v_f).squaredNorm() / l;
+  }
+
+  const Eigen::VectorXd z = A.fullPivLu().solve(b);
+  DenseSolution out;
+  out.accelerations = Eigen::Map<const Eigen::Matrix3Xd>(z.data(), 3, n);
+  out.tensions = Eigen::Map<const Eigen::Matrix3Xd>(z.data() + 3 * n, 3, n);
+  return out;
+}
+
+}  // namespace test
+}  // namespace tow_sim
