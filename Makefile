@@ -25,7 +25,7 @@ test: build
 	cd $(WS) && rm -rf build/test_results && catkin_make $(CATKIN_ARGS) -j$(JOBS) tests
 	cd $(WS) && source devel/setup.bash && catkin_make $(CATKIN_ARGS) -j1 run_tests > $(WS)/run_tests.log 2>&1 \
 	  || { tail -n 60 $(WS)/run_tests.log; echo "catkin_make run_tests failed (log: $(WS)/run_tests.log)"; }
-	@grep -E '^(\[  (PASSED|FAILED) |\[==========\] [0-9]+ tests? from .* ran)|critical angle|energy drift|mode [0-9]:|length error' $(WS)/run_tests.log || true
+	@grep -E '^(\[  (PASSED|FAILED) |\[==========\] [0-9]+ tests? from .* ran)|critical angle|energy drift|mode [0-9]:|length error|trim at|after 60 s|yawed|pitched|incidence|CB [0-9]' $(WS)/run_tests.log || true
 	@cd $(WS) && /usr/bin/python3 $(REPO)/scripts/test_summary.py build/test_results
 
 demo: build

@@ -42,7 +42,7 @@ void BM_RhsSweep(benchmark::State& state)
   Eigen::Matrix3Xd a(3, model->jointCount()), tensions(3, model->jointCount());
   for (auto _ : state)
   {
-    solver.solve(ship, s.x, s.v, a, &tensions);
+    solver.solve(0.0, ship, s.x, s.v, a, &tensions);
     benchmark::DoNotOptimize(a.data());
   }
   state.SetComplexityN(state.range(0));
@@ -57,7 +57,7 @@ void BM_RhsDense(benchmark::State& state)
   ship.v_W = Eigen::Vector3d(2.0, 0.0, 0.0);
   for (auto _ : state)
   {
-    test::DenseSolution d = test::solveDense(*model, ship, s.x, s.v);
+    test::DenseSolution d = test::solveDense(*model, 0.0, ship, s.x, s.v);
     benchmark::DoNotOptimize(d.accelerations.data());
   }
 }

@@ -21,7 +21,7 @@ ChainSolver::ChainSolver(const ChainModel& model) : model_(model)
   k_.resize(n);
 }
 
-void ChainSolver::solve(const ShipEndState& ship, const Eigen::Ref<const Eigen::Matrix3Xd>& x,
+void ChainSolver::solve(double t, const ShipEndState& ship, const Eigen::Ref<const Eigen::Matrix3Xd>& x,
                         const Eigen::Ref<const Eigen::Matrix3Xd>& v, Eigen::Ref<Eigen::Matrix3Xd> a,
                         Eigen::Matrix3Xd* tensions)
 {
@@ -37,7 +37,7 @@ void ChainSolver::solve(const ShipEndState& ship, const Eigen::Ref<const Eigen::
     const Eigen::Vector3d x_f = e == 0 ? ship.p_W : Eigen::Vector3d(x.col(e - 1));
     const Eigen::Vector3d v_f = e == 0 ? ship.v_W : Eigen::Vector3d(v.col(e - 1));
     const ElementKinematics k = ElementKinematics::fromJoints(x_f, x.col(e), v_f, v.col(e));
-    model_.elementDynamics(e, k, body);
+    model_.elementDynamics(e, t, k, body);
 
     // Map the Newton-Euler equations onto the joint accelerations: [a_G; dw/dt] = J_f a_f + J_a a_a.
     const double gamma = body.cg_fraction;
@@ -56,16 +56,25 @@ void ChainSolver::solve(const ShipEndState& ship, const Eigen::Ref<const Eigen::
 
     // Aft joint: M_af a_f + M_aa a_a = h_a - T_aft + mu s with T_aft = K_aft a_a + k_aft, and the length
     // constraint s.a_a = s.a_f + c0. mu is the axial reaction that keeps the element's length.
+    // M_aa + K_aft may be singular along s (an end body with its CG at the bail has no inertia at its
+    // tail joint along its axis), so solve with A = M_aa + K_aft + kappa s s^T, which is regular, and
+    // mu' = mu + kappa s.a_a in place of mu: exact, since s.a_a is fixed by the constraint.
     const double c0 = -(k.v_a - k.v_f).squaredNorm() / k.length;
-    const Eigen::Matrix3d B = (M_aa + K_aft).inverse();
+    Eigen::Matrix3d A = M_aa + K_aft;
+    const double kappa = A.trace() / 3.0;
+    A += kappa * k.s * k.s.transpose();
+    const Eigen::Matrix3d B = A.inverse();
     const Eigen::Vector3d r0 = h_a - k_aft;
     const Eigen::Vector3d u = B * k.s;
     const Eigen::Vector3d u_t = B.transpose() * k.s;
     const double sigma = k.s.dot(u);
-    const Eigen::Vector3d xi = (k.s + M_af.transpose() * u_t) / sigma;  // mu = xi.a_f + eta
-    const double eta = (c0 - u_t.dot(r0)) / sigma;
-    X_[e] = -B * M_af + u * xi.transpose();
-    y_[e] = B * r0 + eta * u;
+    // mu' = xi'.a_f + eta' from the constraint; mu = mu' - kappa (s.a_f + c0).
+    const Eigen::Vector3d xi_prime = (k.s + M_af.transpose() * u_t) / sigma;
+    const double eta_prime = (c0 - u_t.dot(r0)) / sigma;
+    const Eigen::Vector3d xi = xi_prime - kappa * k.s;
+    const double eta = eta_prime - kappa * c0;
+    X_[e] = -B * M_af + u * xi_prime.transpose();
+    y_[e] = B * r0 + eta_prime * u;
     // Forward joint: T_fwd = M_ff a_f + M_fa a_a - h_f + mu s.
     K_[e] = M_ff + M_fa * X_[e] + k.s * xi.transpose();
     k_[e] = M_fa * y_[e] - h_f + eta * k.s;

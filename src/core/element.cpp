@@ -39,8 +39,9 @@ CableSegmentModel CableSegmentModel::fromParams(const CableParams& cable, const 
   m.mass = cable.mass_per_length * m.length;
   const double area = 0.25 * kPi * cable.diameter * cable.diameter;
   m.net_weight = (cable.mass_per_length - env.water_density * area) * env.gravity * m.length;  // (w - b) d
-  m.c1 = cable.c1Value(env);
-  m.c2 = cable.c2Value(env);
+  const double wet = env.water_density > 0.0 ? 1.0 : 0.0;  // vacuum: no drag even for given C1, C2
+  m.c1 = wet * cable.c1Value(env);
+  m.c2 = wet * cable.c2Value(env);
   m.added_mass = cable.added_mass_coefficient * env.water_density * area * m.length;
   m.tangential_model = cable.tangential_drag_model;
   m.smoothing_speed = numerics.tangential_smoothing_speed;
@@ -101,7 +102,7 @@ RigidEndElement::RigidEndElement(const EndElementParams& params, const NumericsP
   validate(p_);
 }
 
-void RigidEndElement::dynamics(const ElementKinematics& k, const Environment& env, BodyDynamics& out) const
+void RigidEndElement::dynamics(double /*t*/, const ElementKinematics& k, const Environment& env, BodyDynamics& out) const
 {
   const Eigen::Matrix3d I3 = Eigen::Matrix3d::Identity();
   const Eigen::Matrix3d P = I3 - k.s * k.s.transpose();

@@ -1,6 +1,7 @@
 #include "tow_sim/core/simulator.h"
 
 #include <algorithm>
+#include <Eigen/Geometry>
 #include <boost/numeric/odeint.hpp>
 #include <cmath>
 #include <sstream>
@@ -62,6 +63,16 @@ double maxRelativeLengthError(const ChainModel& model, const Eigen::Vector3d& to
   return worst;
 }
 
+Diversion lateralDiversion(const Eigen::Vector3d& p_W, const Eigen::Vector3d& v_W, const ShipEndState& ship,
+                           const Eigen::Vector3d& track_direction_W)
+{
+  const Eigen::Vector3d port = Eigen::Vector3d::UnitZ().cross(track_direction_W).normalized();
+  Diversion d;
+  d.offset = port.dot(p_W - ship.p_W);
+  d.rate = port.dot(v_W - ship.v_W);
+  return d;
+}
+
 Simulator::Simulator(std::shared_ptr<ChainModel> model, ShipMotion ship)
   : model_(std::move(model)), ship_(std::move(ship)), solver_(*model_)
 {
@@ -103,7 +114,7 @@ void Simulator::rhs(const StateVector& y, StateVector& dydt, double t)
   Eigen::Map<Eigen::Matrix3Xd> x_dot(dydt.data(), 3, n);
   Eigen::Map<Eigen::Matrix3Xd> a(dydt.data() + 3 * n, 3, n);
   x_dot = v;
-  solver_.solve(ship_(t), x, v, a);
+  solver_.solve(t, ship_(t), x, v, a);
 }
 
 void Simulator::refreshOutputs()
@@ -111,7 +122,7 @@ void Simulator::refreshOutputs()
   const int n = model_->jointCount();
   Eigen::Map<const Eigen::Matrix3Xd> x(y_.data(), 3, n);
   Eigen::Map<const Eigen::Matrix3Xd> v(y_.data() + 3 * n, 3, n);
-  solver_.solve(ship_(t_), x, v, accelerations_, &tensions_);
+  solver_.solve(t_, ship_(t_), x, v, accelerations_, &tensions_);
   Eigen::Map<Eigen::Matrix3Xd>(dydt_.data(), 3, n) = v;
   Eigen::Map<Eigen::Matrix3Xd>(dydt_.data() + 3 * n, 3, n) = accelerations_;
 }
@@ -205,6 +216,20 @@ StepReport Simulator::advanceTo(double t_end)
     refreshOutputs();
   }
   return report;
+}
+
+ElementKinematics Simulator::elementKinematics(int e) const
+{
+  const int n = model_->jointCount();
+  if (e < 0 || e >= n)
+    throw std::out_of_range("elementKinematics: element " + std::to_string(e) + " is not in 0 .. " +
+                            std::to_string(n - 1));
+  Eigen::Map<const Eigen::Matrix3Xd> x(y_.data(), 3, n);
+  Eigen::Map<const Eigen::Matrix3Xd> v(y_.data() + 3 * n, 3, n);
+  const ShipEndState ship = ship_(t_);
+  const Eigen::Vector3d x_f = e == 0 ? ship.p_W : Eigen::Vector3d(x.col(e - 1));
+  const Eigen::Vector3d v_f = e == 0 ? ship.v_W : Eigen::Vector3d(v.col(e - 1));
+  return ElementKinematics::fromJoints(x_f, x.col(e), v_f, v.col(e));
 }
 
 ChainState Simulator::state() const

@@ -17,7 +17,7 @@ Eigen::Matrix3d cross(const Eigen::Vector3d& r)
 }
 }  // namespace
 
-DenseSolution solveDense(const ChainModel& model, const ShipEndState& ship, const Eigen::Matrix3Xd& x,
+DenseSolution solveDense(const ChainModel& model, double t, const ShipEndState& ship, const Eigen::Matrix3Xd& x,
                          const Eigen::Matrix3Xd& v)
 {
   const int n = model.elementCount();
@@ -35,7 +35,7 @@ DenseSolution solveDense(const ChainModel& model, const ShipEndState& ship, cons
     const Eigen::Vector3d v_f = e == 0 ? ship.v_W : Eigen::Vector3d(v.col(e - 1));
     const ElementKinematics k = ElementKinematics::fromJoints(x_f, x.col(e), v_f, v.col(e));
     BodyDynamics body;
-    model.elementDynamics(e, k, body);
+    model.elementDynamics(e, t, k, body);
     const double g = body.cg_fraction;
     const double l = k.length;
     const Eigen::Vector3d& s = k.s;

@@ -19,7 +19,7 @@ struct DenseSolution
   Eigen::Matrix3Xd tensions;       // T_1 .. T_{nu+1}
 };
 
-DenseSolution solveDense(const ChainModel& model, const ShipEndState& ship, const Eigen::Matrix3Xd& x,
+DenseSolution solveDense(const ChainModel& model, double t, const ShipEndState& ship, const Eigen::Matrix3Xd& x,
                          const Eigen::Matrix3Xd& v);
 
 }  // namespace test

@@ -86,7 +86,7 @@ TEST(Vacuum, HangingChainFrequenciesMatchBessel)
       p += d * Eigen::Vector3d(std::sin(theta(e)), 0.0, -std::cos(theta(e)));
       x.col(e) = p;
     }
-    solver.solve(ship, x, v, a);
+    solver.solve(0.0, ship, x, v, a);
     Eigen::VectorXd theta_dd(n);
     Eigen::Vector3d a_f = ship.a_W;
     for (int e = 0; e < n; ++e)

@@ -7,6 +7,7 @@
 #include "core/dense_reference.h"
 #include "core/chain_fixtures.h"
 #include "tow_sim/core/chain_solver.h"
+#include "tow_sim/core/vehicle.h"
 
 namespace tow_sim
 {
@@ -25,7 +26,46 @@ Eigen::Vector3d randomVector(std::mt19937& rng, double scale)
   return scale * Eigen::Vector3d(u(rng), u(rng), u(rng));
 }
 
-RandomCase makeRandomCase(int segments, std::mt19937& rng)
+enum class EndKind
+{
+  kRigid,
+  kVehicleA,
+  kVehicleB,
+  kVehicleBMunk
+};
+
+// A vehicle with random geometry, inertia with products, fins mid-travel and thrust.
+std::shared_ptr<Vehicle> makeRandomVehicle(EndKind kind, std::mt19937& rng)
+{
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  VehicleParams p;
+  p.tail_from_bail = 0.5 + 2.5 * u(rng);
+  p.nose_from_bail = u(rng);
+  auto along = [&] { return -p.nose_from_bail + (p.nose_from_bail + p.tail_from_bail) * u(rng); };
+  p.cg_from_bail = along();
+  p.cb_from_bail = along();
+  p.horizontal_fin_from_bail = along();
+  p.vertical_fin_from_bail = along();
+  p.mass = 20.0 + 300.0 * u(rng);
+  p.displaced_volume = 0.3 * u(rng);
+  const Eigen::Matrix3d a = Eigen::Matrix3d::Random();
+  p.inertia_B = a * a.transpose() + Eigen::Vector3d(1.0, 20.0, 20.0).asDiagonal().toDenseMatrix();
+  p.c1 = 50.0 * u(rng);
+  p.c2 = 400.0 * u(rng);
+  p.added_mass_a = 200.0 * u(rng);
+  const Matrix6d b = Matrix6d::Random();
+  p.added_mass_b = 30.0 * b * b.transpose();
+  p.added_mass_approach = kind == EndKind::kVehicleA ? AddedMassApproach::kA : AddedMassApproach::kB;
+  p.munk_terms = kind == EndKind::kVehicleBMunk;
+  p.thrust_offset_z = u(rng) - 0.5;
+  p.rudder.center_of_pressure_offset = 0.05;
+  auto vehicle = std::make_shared<Vehicle>(p);
+  vehicle->resetActuators(0.0);
+  vehicle->command(0.0, 0.6 * (u(rng) - 0.5), 0.6 * (u(rng) - 0.5), 400.0 * (u(rng) - 0.5));
+  return vehicle;
+}
+
+RandomCase makeRandomCase(int segments, std::mt19937& rng, EndKind kind = EndKind::kRigid)
 {
   std::uniform_real_distribution<double> u(0.0, 1.0);
   CableParams cable;
@@ -48,7 +88,10 @@ RandomCase makeRandomCase(int segments, std::mt19937& rng)
   env.current_W = randomVector(rng, 1.5);
 
   RandomCase c;
-  c.model = test::makeModel(cable, end, env);
+  if (kind == EndKind::kRigid)
+    c.model = test::makeModel(cable, end, env);
+  else
+    c.model = std::make_shared<ChainModel>(cable, makeRandomVehicle(kind, rng), env, NumericsParams());
   c.ship.p_W = randomVector(rng, 100.0);
   c.ship.v_W = randomVector(rng, 3.0);
   c.ship.a_W = randomVector(rng, 0.5);
@@ -84,10 +127,33 @@ TEST(SolverVsDense, RandomStatesMatchToOnePartInABillion)
       const RandomCase c = makeRandomCase(segments, rng);
       ChainSolver solver(*c.model);
       Eigen::Matrix3Xd a(3, c.model->jointCount()), tensions(3, c.model->jointCount());
-      solver.solve(c.ship, c.x, c.v, a, &tensions);
-      const test::DenseSolution ref = test::solveDense(*c.model, c.ship, c.x, c.v);
+      solver.solve(0.0, c.ship, c.x, c.v, a, &tensions);
+      const test::DenseSolution ref = test::solveDense(*c.model, 0.0, c.ship, c.x, c.v);
       EXPECT_LT(relativeError(a, ref.accelerations), 1e-9) << "nu = " << segments << ", trial " << trial;
       EXPECT_LT(relativeError(tensions, ref.tensions), 1e-9) << "nu = " << segments << ", trial " << trial;
+    }
+  }
+}
+
+TEST(SolverVsDense, WithTheFullVehicleInBothApproaches)
+{
+  std::mt19937 rng(777);
+  for (EndKind kind : { EndKind::kVehicleA, EndKind::kVehicleB, EndKind::kVehicleBMunk })
+  {
+    for (int segments = 1; segments <= 30; ++segments)
+    {
+      for (int trial = 0; trial < 3; ++trial)
+      {
+        const RandomCase c = makeRandomCase(segments, rng, kind);
+        ChainSolver solver(*c.model);
+        Eigen::Matrix3Xd a(3, c.model->jointCount()), tensions(3, c.model->jointCount());
+        const double t = 0.4;  // fins part-way through their travel
+        solver.solve(t, c.ship, c.x, c.v, a, &tensions);
+        const test::DenseSolution ref = test::solveDense(*c.model, t, c.ship, c.x, c.v);
+        const int k = static_cast<int>(kind);
+        EXPECT_LT(relativeError(a, ref.accelerations), 1e-9) << "kind " << k << ", nu = " << segments;
+        EXPECT_LT(relativeError(tensions, ref.tensions), 1e-9) << "kind " << k << ", nu = " << segments;
+      }
     }
   }
 }
@@ -107,7 +173,7 @@ TEST(SolverVsDense, DenseReferenceSatisfiesHandCheckedPendulum)
   ShipEndState ship;
   Eigen::Matrix3Xd x(3, 2), v = Eigen::Matrix3Xd::Zero(3, 2);
   x << 0, 0, 0, 0, -1, -2;
-  const test::DenseSolution ref = test::solveDense(*model, ship, x, v);
+  const test::DenseSolution ref = test::solveDense(*model, 0.0, ship, x, v);
   EXPECT_NEAR(ref.tensions(2, 0), 2.0 * 2.0 * env.gravity, 1e-9);  // both rods, 2 kg each
   EXPECT_NEAR(ref.tensions(2, 1), 2.0 * env.gravity, 1e-9);
   EXPECT_LT(ref.accelerations.norm(), 1e-9);

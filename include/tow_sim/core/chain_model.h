@@ -42,13 +42,13 @@ public:
   // The uniform current may change while running (validated like the rest).
   void setCurrent(const Eigen::Vector3d& current_W);
 
-  // Newton-Euler description of element e at the given kinematics.
-  void elementDynamics(int e, const ElementKinematics& k, BodyDynamics& out) const
+  // Newton-Euler description of element e at time t [s] and the given kinematics.
+  void elementDynamics(int e, double t, const ElementKinematics& k, BodyDynamics& out) const
   {
     if (e < segments())
       cableSegmentDynamics(segment_, k, env_, out);
     else
-      end_body_->dynamics(k, env_, out);
+      end_body_->dynamics(t, k, env_, out);
   }
 
 private:

@@ -23,10 +23,10 @@ class ChainSolver
 public:
   explicit ChainSolver(const ChainModel& model);
 
-  // x, v: joints x_2 .. x_{nu+2} (3 x (nu+1)), world. Writes their accelerations into a and, when
+  // t: time [s]; x, v: joints x_2 .. x_{nu+2} (3 x (nu+1)), world. Writes their accelerations into a and, when
   // tensions is not null, T_1 .. T_{nu+1} (3 x (nu+1)): the force on element lambda at its forward
   // joint, i.e. the pull toward the ship; T_1 is the tow force the ship applies.
-  void solve(const ShipEndState& ship, const Eigen::Ref<const Eigen::Matrix3Xd>& x,
+  void solve(double t, const ShipEndState& ship, const Eigen::Ref<const Eigen::Matrix3Xd>& x,
              const Eigen::Ref<const Eigen::Matrix3Xd>& v, Eigen::Ref<Eigen::Matrix3Xd> a,
              Eigen::Matrix3Xd* tensions = nullptr);
 

@@ -72,7 +72,8 @@ class EndBody
 public:
   virtual ~EndBody() = default;
   virtual double length() const = 0;  // [m] d_{nu+1}, bail to tail point
-  virtual void dynamics(const ElementKinematics& k, const Environment& env, BodyDynamics& out) const = 0;
+  // Newton-Euler description at time t [s] (fin servos and thrust depend on time).
+  virtual void dynamics(double t, const ElementKinematics& k, const Environment& env, BodyDynamics& out) const = 0;
 };
 
 // Axisymmetric rigid end body: weight at the CG, buoyancy at the CB, cable-like velocity forces and
@@ -82,7 +83,7 @@ class RigidEndElement : public EndBody
 public:
   RigidEndElement(const EndElementParams& params, const NumericsParams& numerics);
   double length() const override { return p_.length; }
-  void dynamics(const ElementKinematics& k, const Environment& env, BodyDynamics& out) const override;
+  void dynamics(double t, const ElementKinematics& k, const Environment& env, BodyDynamics& out) const override;
   const EndElementParams& params() const { return p_; }
 
 private:

@@ -33,6 +33,16 @@ ChainState straightChain(const ChainModel& model, const Eigen::Vector3d& tow_poi
 // Largest |(|x_{l+1} - x_l|) / d_l - 1| over the elements: the relative length error.
 double maxRelativeLengthError(const ChainModel& model, const Eigen::Vector3d& tow_point_W, const ChainState& state);
 
+// Lateral diversion (the report's): horizontal offset of a point from the line through the ship along
+// the unit horizontal track direction, positive to port, and its rate for a fixed track direction.
+struct Diversion
+{
+  double offset = 0.0;  // [m]
+  double rate = 0.0;    // [m/s]
+};
+Diversion lateralDiversion(const Eigen::Vector3d& p_W, const Eigen::Vector3d& v_W, const ShipEndState& ship,
+                           const Eigen::Vector3d& track_direction_W);
+
 struct StepReport
 {
   int steps = 0;           // accepted steps
@@ -64,6 +74,8 @@ public:
   const Eigen::Matrix3Xd& accelerations() const { return accelerations_; }
   // Current relative length error (after projection).
   double lengthError() const;
+  // Kinematics of element e (0 .. nu) at the current state; e = nu is the vehicle.
+  ElementKinematics elementKinematics(int e) const;
 
   ChainModel& model() { return *model_; }
   const ChainModel& model() const { return *model_; }

@@ -1,0 +1,270 @@
+#include "tow_sim/core/vehicle.h"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <stdexcept>
+
+#include "tow_sim/core/added_mass.h"
+#include "tow_sim/core/geometry.h"
+
+namespace tow_sim
+{
+namespace
+{
+// Below this |z x x_b| the axis counts as vertical and y_b comes from the heading hint.
+constexpr double kVerticalTolerance = 1e-6;
+
+Eigen::Matrix<double, 6, 6> blockRotation(const Eigen::Matrix3d& R)
+{
+  Eigen::Matrix<double, 6, 6> T = Eigen::Matrix<double, 6, 6>::Zero();
+  T.topLeftCorner<3, 3>() = R;
+  T.bottomRightCorner<3, 3>() = R;
+  return T;
+}
+
+Eigen::Vector3d headingHint(const Eigen::Vector3d& v_through_water_W)
+{
+  const Eigen::Vector3d horizontal(v_through_water_W.x(), v_through_water_W.y(), 0.0);
+  return horizontal.norm() > 1e-6 ? Eigen::Vector3d(horizontal.normalized()) : Eigen::Vector3d::UnitX();
+}
+}  // namespace
+
+void validate(const VehicleParams& v, const std::string& p)
+{
+  requireInRange(p + ".tail_from_bail", v.tail_from_bail, 0.0, 100.0, "[m]", true);
+  requireInRange(p + ".nose_from_bail", v.nose_from_bail, 0.0, 100.0, "[m]");
+  const double lo = -v.nose_from_bail, hi = v.tail_from_bail;
+  const char* along = "[m] (from -nose_from_bail to tail_from_bail)";
+  requireInRange(p + ".cg_from_bail", v.cg_from_bail, lo, hi, along);
+  requireInRange(p + ".cb_from_bail", v.cb_from_bail, lo, hi, along);
+  requireInRange(p + ".horizontal_fin_from_bail", v.horizontal_fin_from_bail, lo, hi, along);
+  requireInRange(p + ".vertical_fin_from_bail", v.vertical_fin_from_bail, lo, hi, along);
+  requireInRange(p + ".mass", v.mass, 0.0, 1e6, "[kg]", true);
+  requireInRange(p + ".displaced_volume", v.displaced_volume, 0.0, 1e3, "[m^3]");
+  if (!v.inertia_B.allFinite() || (v.inertia_B - v.inertia_B.transpose()).cwiseAbs().maxCoeff() > 1e-9 * v.inertia_B.norm() ||
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(v.inertia_B).eigenvalues().minCoeff() <= 0.0)
+    throw std::invalid_argument(p + ".inertia must be a finite, symmetric, positive definite 3x3 matrix [kg m^2] "
+                                    "about the CG in body axes (xx, yy, zz > 0)");
+  requireInRange(p + ".c1", v.c1, 0.0, 1e6, "[N s^2/m^3]");
+  requireInRange(p + ".c2", v.c2, 0.0, 1e6, "[N s^2/m^3]");
+  requireInRange(p + ".added_mass.e", v.added_mass_a, 0.0, 1e6, "[kg]");
+  if (v.prolate_spheroid)
+    requireInRange(p + ".added_mass.prolate_spheroid.center_from_bail", v.prolate_spheroid->center_from_bail, lo, hi,
+                   along);
+  else
+    validateAddedMass(v.added_mass_b, p + ".added_mass.matrix");
+  requireInRange(p + ".max_thrust", v.max_thrust, 0.0, 1e6, "[N]");
+  requireInRange(p + ".thrust_offset_z", v.thrust_offset_z, -10.0, 10.0, "[m]");
+  validate(v.rudder, p + ".rudder");
+  validate(v.elevator, p + ".elevator");
+}
+
+Eigen::Matrix3d BodyFrame::rotation() const
+{
+  Eigen::Matrix3d R;
+  R << x, y, z;
+  return R;
+}
+
+BodyFrame bodyFrame(const Eigen::Vector3d& s, const Eigen::Vector3d& heading_hint)
+{
+  BodyFrame f;
+  f.x = -s;
+  Eigen::Vector3d y = Eigen::Vector3d::UnitZ().cross(f.x);
+  if (y.norm() < kVerticalTolerance)
+  {
+    f.vertical = true;
+    y = Eigen::Vector3d::UnitZ().cross(heading_hint);
+    if (y.norm() < kVerticalTolerance)
+      y = Eigen::Vector3d::UnitY();
+    y -= y.dot(f.x) * f.x;  // keep the frame orthonormal
+  }
+  f.y = y.normalized();
+  f.z = f.x.cross(f.y);
+  return f;
+}
+
+Eigen::Quaterniond AttitudeHold::update(const Eigen::Vector3d& x_b_W)
+{
+  const Eigen::Vector3d x = x_b_W.normalized();
+  const double tilt = std::atan2(x.head<2>().norm(), std::abs(x.z()));  // from the vertical
+  const double own_heading = std::atan2(x.y(), x.x());
+  const bool own_heading_defined = x.head<2>().norm() > kVerticalTolerance;
+  if (tilt >= 2.0 * cone_ || (!has_heading_ && own_heading_defined))
+  {
+    heading_ = own_heading;
+    has_heading_ = true;
+  }
+  double heading = heading_;
+  if (tilt > cone_ && tilt < 2.0 * cone_)
+  {
+    const double w = (tilt - cone_) / cone_;  // 0 at the cone, 1 at twice the cone
+    heading += w * std::atan2(std::sin(own_heading - heading_), std::cos(own_heading - heading_));
+  }
+  // y_b level and normal to the heading, then made normal to x_b.
+  Eigen::Vector3d y(-std::sin(heading), std::cos(heading), 0.0);
+  y = (y - y.dot(x) * x).normalized();
+  Eigen::Matrix3d R;
+  R << x, y, x.cross(y);
+  return Eigen::Quaterniond(R).normalized();
+}
+
+struct Vehicle::Loads
+{
+  Vector6d wrench;  // at the CG, world
+  double rudder = 0.0, elevator = 0.0, thrust = 0.0;
+  FinLoads rudder_loads, elevator_loads;
+};
+
+Vehicle::Vehicle(const VehicleParams& params, const NumericsParams& numerics)
+  : p_(params)
+  , smoothing_speed_(numerics.tangential_smoothing_speed)
+  , rudder_servo_(params.rudder.max_deflection, params.rudder.max_rate)
+  , elevator_servo_(params.elevator.max_deflection, params.elevator.max_rate)
+{
+  validate(p_);
+  added_mass_b_ = p_.added_mass_b;
+  if (p_.prolate_spheroid)
+  {
+    // Per unit water density here; dynamics() multiplies by the environment's density.
+    const ProlateSpheroid& ps = *p_.prolate_spheroid;
+    const Eigen::Vector3d r_cg_to_center(-(ps.center_from_bail - p_.cg_from_bail), 0.0, 0.0);  // body axes
+    added_mass_b_ = moveMassMatrix(prolateSpheroidAddedMass(ps.length, ps.diameter, 1.0), r_cg_to_center);
+  }
+}
+
+bool Vehicle::command(double t, double rudder, double elevator, double thrust)
+{
+  if (!std::isfinite(rudder) || !std::isfinite(elevator) || !std::isfinite(thrust))
+    throw std::invalid_argument("vehicle command: rudder, elevator and thrust must be finite");
+  const bool saturated = std::abs(rudder) > p_.rudder.max_deflection ||
+                         std::abs(elevator) > p_.elevator.max_deflection || std::abs(thrust) > p_.max_thrust;
+  rudder_servo_.command(t, rudder);
+  elevator_servo_.command(t, elevator);
+  thrust_ = std::clamp(thrust, -p_.max_thrust, p_.max_thrust);
+  return saturated;
+}
+
+void Vehicle::resetActuators(double t)
+{
+  rudder_servo_.reset(t, 0.0);
+  elevator_servo_.reset(t, 0.0);
+  thrust_ = 0.0;
+}
+
+Vehicle::Loads Vehicle::loads(double t, const ElementKinematics& k, const Environment& env,
+                              const BodyFrame& frame) const
+{
+  const double tail = p_.tail_from_bail;
+  const Eigen::Vector3d& s = k.s;
+  const Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
+  Loads out;
+  Eigen::Vector3d force = -p_.mass * env.gravity * up;
+  const Eigen::Vector3d buoyancy = env.water_density * env.gravity * p_.displaced_volume * up;
+  force += buoyancy;
+  Eigen::Vector3d moment = ((p_.cb_from_bail - p_.cg_from_bail) * s).cross(buoyancy);
+
+  // Velocity forces over the bail-tail length, at its midpoint (as for a cable element).
+  const double wet = env.water_density > 0.0 ? 1.0 : 0.0;  // vacuum: no hydrodynamic loads
+  const VelocityForces vf =
+      velocityForces(k, env.current_W, wet * p_.c1, wet * p_.c2, TangentialDragModel::kPode, smoothing_speed_);
+  force += vf.force;
+  moment += ((0.5 * tail - p_.cg_from_bail) * s).cross(vf.force) + vf.moment;
+
+  // Thrust along x_b at the tail, its line of action thrust_offset_z above the axis.
+  out.thrust = thrust_;
+  const Eigen::Vector3d thrust_force = thrust_ * frame.x;
+  force += thrust_force;
+  moment += ((tail - p_.cg_from_bail) * s + p_.thrust_offset_z * frame.z).cross(thrust_force);
+
+  // Fins at their servo angles, in the flow at their own point.
+  out.rudder = rudder_servo_.angleAt(t);
+  out.elevator = elevator_servo_.angleAt(t);
+  FinPairParams rudder = p_.rudder, elevator = p_.elevator;
+  rudder.lift_constant *= wet;
+  rudder.drag_constant *= wet;
+  elevator.lift_constant *= wet;
+  elevator.drag_constant *= wet;
+  const Eigen::Vector3d v_vf = k.velocityAt(p_.vertical_fin_from_bail / tail) - env.current_W;
+  const Eigen::Vector3d v_hf = k.velocityAt(p_.horizontal_fin_from_bail / tail) - env.current_W;
+  out.rudder_loads = finPairLoads(rudder, FinPlane::kVertical, out.rudder, v_vf, frame.x, frame.y, frame.z,
+                                  p_.vertical_fin_from_bail - p_.cg_from_bail);
+  out.elevator_loads = finPairLoads(elevator, FinPlane::kHorizontal, out.elevator, v_hf, frame.x, frame.y, frame.z,
+                                    p_.horizontal_fin_from_bail - p_.cg_from_bail);
+  force += out.rudder_loads.lift_W + out.rudder_loads.drag_W + out.elevator_loads.lift_W + out.elevator_loads.drag_W;
+  moment += out.rudder_loads.moment_cg_W + out.elevator_loads.moment_cg_W;
+
+  out.wrench << force, moment;
+  return out;
+}
+
+void Vehicle::dynamics(double t, const ElementKinematics& k, const Environment& env, BodyDynamics& out) const
+{
+  const double gamma = p_.cg_from_bail / p_.tail_from_bail;
+  const Eigen::Vector3d v_cg = k.velocityAt(gamma);
+  const BodyFrame frame = bodyFrame(k.s, headingHint(v_cg - env.current_W));
+  const Eigen::Matrix3d R = frame.rotation();
+  const Eigen::Matrix3d I3 = Eigen::Matrix3d::Identity();
+  const Eigen::Matrix3d inertia_W = R * p_.inertia_B * R.transpose();
+  out.cg_fraction = gamma;
+  out.mass.setZero();
+  out.mass.topLeftCorner<3, 3>() = p_.mass * I3;
+  out.mass.bottomRightCorner<3, 3>() = inertia_W;
+
+  const Loads l = loads(t, k, env, frame);
+  out.wrench = l.wrench;
+  // d(I w)/dt = I dw/dt + w x I w with w = s x ds/dt (no roll).
+  out.wrench.tail<3>() -= k.omega.cross(inertia_W * k.omega);
+
+  if (p_.added_mass_approach == AddedMassApproach::kA)
+  {
+    // -e P (a_mid), a_mid = a_G + dw/dt x r, r from the CG to the bail-tail midpoint.
+    const double e = env.water_density > 0.0 ? p_.added_mass_a : 0.0;
+    const Eigen::Matrix3d P = I3 - k.s * k.s.transpose();
+    const Eigen::Matrix3d S = skew((0.5 * p_.tail_from_bail - p_.cg_from_bail) * k.s);
+    out.mass.topLeftCorner<3, 3>() += e * P;
+    out.mass.topRightCorner<3, 3>() -= e * S;
+    out.mass.bottomLeftCorner<3, 3>() += e * S;
+    out.mass.bottomRightCorner<3, 3>() -= e * S * S;
+  }
+  else
+  {
+    // The spheroid's matrix is per unit density; a given matrix holds in water and vanishes in vacuum.
+    const double density_scale = p_.prolate_spheroid ? env.water_density : (env.water_density > 0.0 ? 1.0 : 0.0);
+    const Matrix6d A = density_scale * added_mass_b_;
+    const Matrix6d T = blockRotation(R);
+    out.mass += T * A * T.transpose();
+    if (p_.munk_terms)
+    {
+      const Vector6d munk = munkWrench(A, R.transpose() * (v_cg - env.current_W), R.transpose() * k.omega);
+      out.wrench.head<3>() += R * munk.head<3>();
+      out.wrench.tail<3>() += R * munk.tail<3>();
+    }
+  }
+}
+
+VehicleOutputs Vehicle::outputs(double t, const ElementKinematics& k, const Environment& env) const
+{
+  const double gamma = p_.cg_from_bail / p_.tail_from_bail;
+  VehicleOutputs o;
+  o.p_cg_W = k.pointAt(gamma);
+  o.v_cg_W = k.velocityAt(gamma);
+  const BodyFrame frame = bodyFrame(k.s, headingHint(o.v_cg_W - env.current_W));
+  const Eigen::Matrix3d R = frame.rotation();
+  o.q_WB = Eigen::Quaterniond(R).normalized();
+  o.v_cg_B = R.transpose() * o.v_cg_W;
+  o.omega_W = k.omega;
+  o.omega_B = R.transpose() * k.omega;
+  o.depth = -o.p_cg_W.z();
+  o.pitch = -std::asin(std::clamp(frame.x.z(), -1.0, 1.0));
+  o.yaw = std::atan2(-frame.y.x(), frame.y.y());
+  const Loads l = loads(t, k, env, frame);
+  o.rudder = l.rudder;
+  o.elevator = l.elevator;
+  o.thrust = l.thrust;
+  o.rudder_loads = l.rudder_loads;
+  o.elevator_loads = l.elevator_loads;
+  return o;
+}
+
+}  // namespace tow_sim
