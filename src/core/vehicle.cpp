@@ -264,6 +264,12 @@ VehicleOutputs Vehicle::outputs(double t, const ElementKinematics& k, const Envi
   o.thrust = l.thrust;
   o.rudder_loads = l.rudder_loads;
   o.elevator_loads = l.elevator_loads;
+  for (FinLoads* f : { &o.rudder_loads, &o.elevator_loads })
+  {
+    f->lift_B = R.transpose() * f->lift_W;
+    f->drag_B = R.transpose() * f->drag_W;
+    f->moment_cg_B = R.transpose() * f->moment_cg_W;
+  }
   return o;
 }
 

@@ -32,9 +32,13 @@ TEST(Lamb, ProlateSpheroidCoefficientsMatchLambsTable)
     const LambCoefficients k = lambCoefficients(row[0], 1.0);
     EXPECT_NEAR(k.k1, row[1], 0.0015) << "c/a = " << row[0];
     if (row[2] >= 0.0)
+    {
       EXPECT_NEAR(k.k2, row[2], 0.0015) << "c/a = " << row[0];
+    }
     if (row[3] >= 0.0)
+    {
       EXPECT_NEAR(k.k_rot, row[3], 0.0015) << "c/a = " << row[0];
+    }
   }
   // Limits: a long slender body tends to k1 = 0, k2 = k' = 1.
   const LambCoefficients slender = lambCoefficients(1000.0, 1.0);
@@ -264,6 +268,19 @@ TEST(AddedMass, FreeBodyKeepsEnergyAndImpulse)
   EXPECT_LT((impulse(b) - i0).norm(), 1e-6 * i0.norm());
   // The Munk moment did turn it: its axis is no longer where it started.
   EXPECT_LT(b.R(0, 0), 0.99);
+}
+
+TEST(Vehicle, LateralDiversionIsTheOffsetToPortOfTheShipsTrack)
+{
+  ShipEndState ship;
+  ship.p_W = Eigen::Vector3d(100.0, 50.0, 0.0);
+  ship.v_W = Eigen::Vector3d(2.0, 0.0, 0.0);
+  Diversion d = lateralDiversion(Eigen::Vector3d(10.0, 53.0, -40.0), Eigen::Vector3d(2.0, 0.5, 0.1), ship,
+                                 Eigen::Vector3d::UnitX());
+  EXPECT_DOUBLE_EQ(d.offset, 3.0);
+  EXPECT_DOUBLE_EQ(d.rate, 0.5);
+  d = lateralDiversion(Eigen::Vector3d(103.0, 0.0, -40.0), Eigen::Vector3d::Zero(), ship, Eigen::Vector3d::UnitY());
+  EXPECT_DOUBLE_EQ(d.offset, -3.0);  // heading north, 3 m east is to starboard
 }
 
 TEST(Vehicle, BodyFrameIsUprightZeroRollAndDefinedWhenVertical)

@@ -35,7 +35,6 @@ private:
 
 struct FinPairParams
 {
-  double position_from_bail = 1.9;   // [m] d_{nu+3} (horizontal) or d_{nu+4} (vertical), aft of the bail
   double lift_constant = 150.0;      // [N s^2/m^2] C3 (vertical) or C5 (horizontal), >= 0
   double drag_constant = 50.0;       // [N s^2/m^2] C4 or C6, >= 0
   AngleTable lift = AngleTable::defaultLift();  // F_L, odd
@@ -76,6 +75,9 @@ struct FinLoads
   Eigen::Vector3d lift_W = Eigen::Vector3d::Zero();    // [N]
   Eigen::Vector3d drag_W = Eigen::Vector3d::Zero();    // [N]
   Eigen::Vector3d moment_cg_W = Eigen::Vector3d::Zero();  // [N m] of lift + drag about the vehicle CG
+  Eigen::Vector3d lift_B = Eigen::Vector3d::Zero();       // [N] the same three in body axes (FLU),
+  Eigen::Vector3d drag_B = Eigen::Vector3d::Zero();       //     filled by Vehicle::outputs()
+  Eigen::Vector3d moment_cg_B = Eigen::Vector3d::Zero();  // [N m]
   double hinge_moment = 0.0;       // [N m] about the hinge axis (z_b vertical fins, y_b horizontal), from the
                                    // centre-of-pressure offset
 };

@@ -1,0 +1,419 @@
+#include "tow_sim/core/config.h"
+
+#include <cmath>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+namespace tow_sim
+{
+namespace
+{
+[[noreturn]] void fail(const std::string& path, const std::string& what)
+{
+  throw std::invalid_argument(path + ": " + what);
+}
+
+// One YAML mapping with its key path; remembers which keys were read so that unknown ones (typos)
+// are reported instead of silently ignored.
+class Section
+{
+public:
+  Section(const YAML::Node& node, std::string path) : node_(node), path_(std::move(path))
+  {
+    if (node_ && !node_.IsNull() && !node_.IsMap())
+      fail(path_, "must be a mapping of keys to values");
+  }
+
+  const std::string& name() const { return path_; }
+  std::string path(const std::string& key) const { return path_ + "." + key; }
+  bool has(const std::string& key)
+  {
+    known_.insert(key);
+    return node_ && node_.IsMap() && node_[key] && !node_[key].IsNull();
+  }
+
+  void read(const std::string& key, double& value)
+  {
+    if (has(key))
+      value = number(node_[key], path(key));
+  }
+  void read(const std::string& key, std::optional<double>& value)
+  {
+    if (has(key))
+      value = number(node_[key], path(key));
+  }
+  void read(const std::string& key, int& value)
+  {
+    if (!has(key))
+      return;
+    const double v = number(node_[key], path(key));
+    if (v != std::floor(v) || std::abs(v) > 1e9)
+      fail(path(key), "must be a whole number, got " + node_[key].as<std::string>());
+    value = static_cast<int>(v);
+  }
+  void read(const std::string& key, bool& value)
+  {
+    if (!has(key))
+      return;
+    try
+    {
+      value = node_[key].as<bool>();
+    }
+    catch (const YAML::Exception&)
+    {
+      fail(path(key), "must be true or false");
+    }
+  }
+  std::string text(const std::string& key, const std::string& fallback)
+  {
+    if (!has(key))
+      return fallback;
+    if (!node_[key].IsScalar())
+      fail(path(key), "must be a string");
+    return node_[key].as<std::string>();
+  }
+  std::vector<double> list(const std::string& key)
+  {
+    std::vector<double> out;
+    if (!has(key))
+      return out;
+    const YAML::Node n = node_[key];
+    if (!n.IsSequence())
+      fail(path(key), "must be a list of numbers");
+    for (size_t i = 0; i < n.size(); ++i)
+      out.push_back(number(n[i], path(key) + "[" + std::to_string(i) + "]"));
+    return out;
+  }
+  void read(const std::string& key, Eigen::Vector3d& value)
+  {
+    if (!has(key))
+      return;
+    const std::vector<double> v = list(key);
+    if (v.size() != 3)
+      fail(path(key), "must be a list of 3 numbers [x, y, z], got " + std::to_string(v.size()));
+    value = Eigen::Vector3d(v[0], v[1], v[2]);
+  }
+  Section child(const std::string& key)
+  {
+    has(key);
+    return Section(node_ && node_.IsMap() ? node_[key] : YAML::Node(), path(key));
+  }
+
+  // Throws for any key that no read asked for.
+  void finish() const
+  {
+    if (!node_ || !node_.IsMap())
+      return;
+    for (const auto& entry : node_)
+    {
+      const std::string key = entry.first.as<std::string>();
+      if (known_.count(key))
+        continue;
+      std::ostringstream os;
+      os << "unknown key (known keys:";
+      for (const std::string& k : known_)
+        os << " " << k;
+      os << ")";
+      fail(path(key), os.str());
+    }
+  }
+
+private:
+  static double number(const YAML::Node& n, const std::string& where)
+  {
+    if (!n.IsScalar())
+      fail(where, "must be a number");
+    const std::string text = n.as<std::string>();
+    try
+    {
+      return n.as<double>();
+    }
+    catch (const YAML::Exception&)
+    {
+      fail(where, "must be a number, got '" + text + "'");
+    }
+  }
+
+  YAML::Node node_;
+  std::string path_;
+  std::set<std::string> known_;
+};
+
+void readCable(Section s, CableParams& c)
+{
+  s.read("length", c.length);
+  s.read("segments", c.segments);
+  s.read("diameter", c.diameter);
+  s.read("mass_per_length", c.mass_per_length);
+  s.read("normal_drag_coefficient", c.normal_drag_coefficient);
+  s.read("tangential_drag_coefficient", c.tangential_drag_coefficient);
+  s.read("c1", c.c1);
+  s.read("c2", c.c2);
+  s.read("added_mass_coefficient", c.added_mass_coefficient);
+  const std::string model = s.text("tangential_drag_model", "pode");
+  if (model == "pode")
+    c.tangential_drag_model = TangentialDragModel::kPode;
+  else if (model == "quadratic")
+    c.tangential_drag_model = TangentialDragModel::kQuadratic;
+  else
+    fail(s.path("tangential_drag_model"), "= '" + model + "' must be 'pode' or 'quadratic'");
+  s.finish();
+}
+
+void readEnvironment(Section s, Environment& e)
+{
+  s.read("gravity", e.gravity);
+  s.read("water_density", e.water_density);
+  s.read("current", e.current_W);
+  s.finish();
+}
+
+void readNumerics(Section s, NumericsParams& n)
+{
+  const std::string stepper = s.text("stepper", "dopri5");
+  if (stepper == "dopri5")
+    n.stepper = StepperType::kDopri5;
+  else if (stepper == "rk4")
+    n.stepper = StepperType::kRk4;
+  else
+    fail(s.path("stepper"), "= '" + stepper + "' must be 'dopri5' or 'rk4'");
+  s.read("abs_tol", n.abs_tol);
+  s.read("rel_tol", n.rel_tol);
+  s.read("max_step", n.max_step);
+  s.read("fixed_step", n.fixed_step);
+  s.read("tangential_smoothing_speed", n.tangential_smoothing_speed);
+  s.finish();
+}
+
+AngleTable readTable(Section s, const AngleTable& fallback, bool odd)
+{
+  std::vector<double> angles = s.list("angles"), values = s.list("values");
+  s.finish();
+  if (angles.empty() && values.empty())
+    return fallback;
+  return AngleTable(angles, values, odd, s.name());
+}
+
+void readFins(Section s, FinPairParams& f)
+{
+  s.read("lift_constant", f.lift_constant);
+  s.read("drag_constant", f.drag_constant);
+  s.read("max_deflection", f.max_deflection);
+  s.read("max_rate", f.max_rate);
+  s.read("center_of_pressure_offset", f.center_of_pressure_offset);
+  f.lift = readTable(s.child("lift_table"), f.lift, true);
+  f.drag = readTable(s.child("drag_table"), f.drag, false);
+  s.finish();
+}
+
+void readInertia(Section s, Eigen::Matrix3d& I)
+{
+  double xx = I(0, 0), yy = I(1, 1), zz = I(2, 2), xy = I(0, 1), xz = I(0, 2), yz = I(1, 2);
+  s.read("xx", xx);
+  s.read("yy", yy);
+  s.read("zz", zz);
+  s.read("xy", xy);
+  s.read("xz", xz);
+  s.read("yz", yz);
+  s.finish();
+  I << xx, xy, xz, xy, yy, yz, xz, yz, zz;
+}
+
+void readAddedMass(Section s, VehicleParams& v)
+{
+  const std::string approach = s.text("approach", v.added_mass_approach == AddedMassApproach::kA ? "A" : "B");
+  if (approach == "A")
+    v.added_mass_approach = AddedMassApproach::kA;
+  else if (approach == "B")
+    v.added_mass_approach = AddedMassApproach::kB;
+  else
+    fail(s.path("approach"), "= '" + approach + "' must be 'A' or 'B'");
+  s.read("e", v.added_mass_a);
+  s.read("munk_terms", v.munk_terms);
+  const std::vector<double> m = s.list("matrix");
+  if (m.size() == 36)
+  {
+    for (int i = 0; i < 36; ++i)
+      v.added_mass_b(i / 6, i % 6) = m[i];
+  }
+  else if (m.size() == 21)
+  {
+    int k = 0;
+    for (int i = 0; i < 6; ++i)
+      for (int j = i; j < 6; ++j, ++k)
+        v.added_mass_b(i, j) = v.added_mass_b(j, i) = m[k];
+  }
+  else if (!m.empty())
+  {
+    fail(s.path("matrix"), "must hold 36 numbers (6x6, row by row) or 21 (its upper triangle, row by row); got " +
+                               std::to_string(m.size()));
+  }
+  if (s.has("prolate_spheroid"))
+  {
+    Section p = s.child("prolate_spheroid");
+    ProlateSpheroid ps;
+    p.read("length", ps.length);
+    p.read("diameter", ps.diameter);
+    p.read("center_from_bail", ps.center_from_bail);
+    p.finish();
+    requireInRange(p.path("length"), ps.length, 0.0, 1e3, "[m]", true);
+    requireInRange(p.path("diameter"), ps.diameter, 0.0, ps.length, "[m] (0 .. length: prolate)", true);
+    if (!m.empty())
+      fail(s.path("prolate_spheroid"), "give either matrix or prolate_spheroid, not both");
+    v.prolate_spheroid = ps;
+  }
+  s.finish();
+}
+
+void readVehicle(Section s, VehicleParams& v)
+{
+  s.read("tail_from_bail", v.tail_from_bail);
+  s.read("cg_from_bail", v.cg_from_bail);
+  s.read("horizontal_fin_from_bail", v.horizontal_fin_from_bail);
+  s.read("vertical_fin_from_bail", v.vertical_fin_from_bail);
+  s.read("nose_from_bail", v.nose_from_bail);
+  s.read("cb_from_bail", v.cb_from_bail);
+  s.read("mass", v.mass);
+  s.read("displaced_volume", v.displaced_volume);
+  readInertia(s.child("inertia"), v.inertia_B);
+  s.read("c1", v.c1);
+  s.read("c2", v.c2);
+  readAddedMass(s.child("added_mass"), v);
+  s.read("max_thrust", v.max_thrust);
+  s.read("thrust_offset_z", v.thrust_offset_z);
+  readFins(s.child("rudder"), v.rudder);
+  readFins(s.child("elevator"), v.elevator);
+  s.finish();
+}
+
+YAML::Node tableYaml(const AngleTable& t)
+{
+  YAML::Node n;
+  n["angles"] = t.angles();
+  n["values"] = t.values();
+  return n;
+}
+
+YAML::Node finsYaml(const FinPairParams& f)
+{
+  YAML::Node n;
+  n["lift_constant"] = f.lift_constant;
+  n["drag_constant"] = f.drag_constant;
+  n["max_deflection"] = f.max_deflection;
+  n["max_rate"] = f.max_rate;
+  n["center_of_pressure_offset"] = f.center_of_pressure_offset;
+  n["lift_table"] = tableYaml(f.lift);
+  n["drag_table"] = tableYaml(f.drag);
+  return n;
+}
+}  // namespace
+
+SimulationConfig loadConfig(const YAML::Node& root, const std::string& prefix)
+{
+  SimulationConfig c;
+  if (root && !root.IsNull() && !root.IsMap())
+    fail(prefix.empty() ? "configuration" : prefix, "must be a mapping with the sections cable, vehicle, environment, "
+                                                    "numerics");
+  auto section = [&](const char* name) {
+    return Section(root && root.IsMap() ? root[name] : YAML::Node(), prefix + name);
+  };
+  readCable(section("cable"), c.cable);
+  readEnvironment(section("environment"), c.environment);
+  readNumerics(section("numerics"), c.numerics);
+  readVehicle(section("vehicle"), c.vehicle);
+  validate(c.cable, prefix + "cable");
+  validate(c.environment, prefix + "environment");
+  validate(c.numerics, prefix + "numerics");
+  validate(c.vehicle, prefix + "vehicle");
+  return c;
+}
+
+SimulationConfig loadConfigFile(const std::string& path)
+{
+  YAML::Node root;
+  try
+  {
+    root = YAML::LoadFile(path);
+  }
+  catch (const YAML::Exception& e)
+  {
+    throw std::invalid_argument(path + ": cannot read the configuration: " + e.what());
+  }
+  return loadConfig(root);
+}
+
+YAML::Node toYaml(const SimulationConfig& c)
+{
+  YAML::Node root;
+  YAML::Node cable = root["cable"];
+  cable["length"] = c.cable.length;
+  cable["segments"] = c.cable.segments;
+  cable["diameter"] = c.cable.diameter;
+  cable["mass_per_length"] = c.cable.mass_per_length;
+  cable["normal_drag_coefficient"] = c.cable.normal_drag_coefficient;
+  cable["tangential_drag_coefficient"] = c.cable.tangential_drag_coefficient;
+  if (c.cable.c1)
+    cable["c1"] = *c.cable.c1;
+  if (c.cable.c2)
+    cable["c2"] = *c.cable.c2;
+  cable["added_mass_coefficient"] = c.cable.added_mass_coefficient;
+  cable["tangential_drag_model"] = c.cable.tangential_drag_model == TangentialDragModel::kPode ? "pode" : "quadratic";
+
+  YAML::Node env = root["environment"];
+  env["gravity"] = c.environment.gravity;
+  env["water_density"] = c.environment.water_density;
+  env["current"] = std::vector<double>{ c.environment.current_W.x(), c.environment.current_W.y(),
+                                        c.environment.current_W.z() };
+
+  YAML::Node num = root["numerics"];
+  num["stepper"] = c.numerics.stepper == StepperType::kDopri5 ? "dopri5" : "rk4";
+  num["abs_tol"] = c.numerics.abs_tol;
+  num["rel_tol"] = c.numerics.rel_tol;
+  num["max_step"] = c.numerics.max_step;
+  num["fixed_step"] = c.numerics.fixed_step;
+  num["tangential_smoothing_speed"] = c.numerics.tangential_smoothing_speed;
+
+  const VehicleParams& v = c.vehicle;
+  YAML::Node veh = root["vehicle"];
+  veh["tail_from_bail"] = v.tail_from_bail;
+  veh["cg_from_bail"] = v.cg_from_bail;
+  veh["horizontal_fin_from_bail"] = v.horizontal_fin_from_bail;
+  veh["vertical_fin_from_bail"] = v.vertical_fin_from_bail;
+  veh["nose_from_bail"] = v.nose_from_bail;
+  veh["cb_from_bail"] = v.cb_from_bail;
+  veh["mass"] = v.mass;
+  veh["displaced_volume"] = v.displaced_volume;
+  YAML::Node inertia = veh["inertia"];
+  inertia["xx"] = v.inertia_B(0, 0);
+  inertia["yy"] = v.inertia_B(1, 1);
+  inertia["zz"] = v.inertia_B(2, 2);
+  inertia["xy"] = v.inertia_B(0, 1);
+  inertia["xz"] = v.inertia_B(0, 2);
+  inertia["yz"] = v.inertia_B(1, 2);
+  veh["c1"] = v.c1;
+  veh["c2"] = v.c2;
+  YAML::Node am = veh["added_mass"];
+  am["approach"] = v.added_mass_approach == AddedMassApproach::kA ? "A" : "B";
+  am["e"] = v.added_mass_a;
+  am["munk_terms"] = v.munk_terms;
+  if (v.prolate_spheroid)
+  {
+    am["prolate_spheroid"]["length"] = v.prolate_spheroid->length;
+    am["prolate_spheroid"]["diameter"] = v.prolate_spheroid->diameter;
+    am["prolate_spheroid"]["center_from_bail"] = v.prolate_spheroid->center_from_bail;
+  }
+  else
+  {
+    std::vector<double> m(v.added_mass_b.data(), v.added_mass_b.data() + 36);  // symmetric: order immaterial
+    am["matrix"] = m;
+  }
+  veh["max_thrust"] = v.max_thrust;
+  veh["thrust_offset_z"] = v.thrust_offset_z;
+  veh["rudder"] = finsYaml(v.rudder);
+  veh["elevator"] = finsYaml(v.elevator);
+  return root;
+}
+
+}  // namespace tow_sim

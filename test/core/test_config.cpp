@@ -1,0 +1,161 @@
+// The YAML configuration: the shipped file documents the real defaults, and every bad key or value is
+// reported with its full path.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "tow_sim/core/config.h"
+
+namespace tow_sim
+{
+namespace
+{
+std::string errorOf(const std::string& yaml, const std::string& prefix = "")
+{
+  try
+  {
+    loadConfig(YAML::Load(yaml), prefix);
+  }
+  catch (const std::invalid_argument& e)
+  {
+    return e.what();
+  }
+  return "(accepted)";
+}
+
+void expectSameTable(const AngleTable& a, const AngleTable& b)
+{
+  ASSERT_EQ(a.angles().size(), b.angles().size());
+  for (size_t i = 0; i < a.angles().size(); ++i)
+  {
+    EXPECT_NEAR(a.angles()[i], b.angles()[i], 1e-6);
+    EXPECT_NEAR(a.values()[i], b.values()[i], 1e-6);
+  }
+}
+
+void expectSame(const SimulationConfig& a, const SimulationConfig& b)
+{
+  EXPECT_EQ(YAML::Dump(toYaml(a)).size() > 0, true);
+  EXPECT_EQ(a.cable.length, b.cable.length);
+  EXPECT_EQ(a.cable.segments, b.cable.segments);
+  EXPECT_EQ(a.cable.diameter, b.cable.diameter);
+  EXPECT_EQ(a.cable.mass_per_length, b.cable.mass_per_length);
+  EXPECT_EQ(a.cable.normal_drag_coefficient, b.cable.normal_drag_coefficient);
+  EXPECT_EQ(a.cable.tangential_drag_coefficient, b.cable.tangential_drag_coefficient);
+  EXPECT_EQ(a.cable.c1, b.cable.c1);
+  EXPECT_EQ(a.cable.c2, b.cable.c2);
+  EXPECT_EQ(a.cable.added_mass_coefficient, b.cable.added_mass_coefficient);
+  EXPECT_EQ(a.cable.tangential_drag_model, b.cable.tangential_drag_model);
+  EXPECT_EQ(a.environment.gravity, b.environment.gravity);
+  EXPECT_EQ(a.environment.water_density, b.environment.water_density);
+  EXPECT_EQ(a.environment.current_W, b.environment.current_W);
+  EXPECT_EQ(a.numerics.stepper, b.numerics.stepper);
+  EXPECT_EQ(a.numerics.abs_tol, b.numerics.abs_tol);
+  EXPECT_EQ(a.numerics.rel_tol, b.numerics.rel_tol);
+  EXPECT_EQ(a.numerics.max_step, b.numerics.max_step);
+  EXPECT_EQ(a.numerics.fixed_step, b.numerics.fixed_step);
+  EXPECT_EQ(a.numerics.tangential_smoothing_speed, b.numerics.tangential_smoothing_speed);
+  const VehicleParams &v = a.vehicle, &w = b.vehicle;
+  EXPECT_EQ(v.tail_from_bail, w.tail_from_bail);
+  EXPECT_EQ(v.cg_from_bail, w.cg_from_bail);
+  EXPECT_EQ(v.horizontal_fin_from_bail, w.horizontal_fin_from_bail);
+  EXPECT_EQ(v.vertical_fin_from_bail, w.vertical_fin_from_bail);
+  EXPECT_EQ(v.nose_from_bail, w.nose_from_bail);
+  EXPECT_EQ(v.cb_from_bail, w.cb_from_bail);
+  EXPECT_EQ(v.mass, w.mass);
+  EXPECT_EQ(v.displaced_volume, w.displaced_volume);
+  EXPECT_EQ(v.inertia_B, w.inertia_B);
+  EXPECT_EQ(v.c1, w.c1);
+  EXPECT_EQ(v.c2, w.c2);
+  EXPECT_EQ(v.added_mass_approach, w.added_mass_approach);
+  EXPECT_EQ(v.added_mass_a, w.added_mass_a);
+  EXPECT_EQ(v.added_mass_b, w.added_mass_b);
+  EXPECT_EQ(v.prolate_spheroid.has_value(), w.prolate_spheroid.has_value());
+  EXPECT_EQ(v.munk_terms, w.munk_terms);
+  EXPECT_EQ(v.max_thrust, w.max_thrust);
+  EXPECT_EQ(v.thrust_offset_z, w.thrust_offset_z);
+  for (const auto& pair : { std::make_pair(&v.rudder, &w.rudder), std::make_pair(&v.elevator, &w.elevator) })
+  {
+    EXPECT_EQ(pair.first->lift_constant, pair.second->lift_constant);
+    EXPECT_EQ(pair.first->drag_constant, pair.second->drag_constant);
+    EXPECT_EQ(pair.first->max_deflection, pair.second->max_deflection);
+    EXPECT_EQ(pair.first->max_rate, pair.second->max_rate);
+    EXPECT_EQ(pair.first->center_of_pressure_offset, pair.second->center_of_pressure_offset);
+    expectSameTable(pair.first->lift, pair.second->lift);
+    expectSameTable(pair.first->drag, pair.second->drag);
+  }
+}
+
+TEST(Config, ShippedFileDocumentsTheBuiltInDefaults)
+{
+  const SimulationConfig file = loadConfigFile(std::string(TOW_SIM_SOURCE_DIR) + "/config/tow_sim.yaml");
+  expectSame(file, SimulationConfig());
+  expectSame(loadConfig(YAML::Load("{}")), SimulationConfig());
+}
+
+TEST(Config, RoundTripsThroughYaml)
+{
+  SimulationConfig c = loadConfig(YAML::Load(R"(
+cable: {length: 320, segments: 40, c2: 14.5, tangential_drag_model: quadratic}
+environment: {current: [0.3, -0.2, 0.0]}
+numerics: {stepper: rk4, fixed_step: 0.02}
+vehicle:
+  inertia: {xx: 3, yy: 50, zz: 55, xz: 1.5}
+  added_mass: {approach: B, munk_terms: true, prolate_spheroid: {length: 2.0, diameter: 0.3, center_from_bail: 0.2}}
+  rudder: {lift_constant: 210, lift_table: {angles: [0, 0.5, 1.5707963], values: [0, 0.5, 0]}}
+)"));
+  EXPECT_EQ(c.cable.segments, 40);
+  EXPECT_EQ(*c.cable.c2, 14.5);
+  EXPECT_EQ(c.numerics.stepper, StepperType::kRk4);
+  EXPECT_EQ(c.vehicle.inertia_B(2, 0), 1.5);
+  EXPECT_TRUE(c.vehicle.prolate_spheroid.has_value());
+  EXPECT_NEAR(c.vehicle.rudder.lift(0.25), 0.25, 1e-12);
+  expectSame(loadConfig(toYaml(c)), c);
+}
+
+TEST(Config, AcceptsTheUpperTriangleOfTheAddedMassMatrix)
+{
+  const SimulationConfig c = loadConfig(YAML::Load(
+      "vehicle: {added_mass: {approach: B, matrix: [10, 1, 0, 0, 0, 0,  20, 0, 0, 0, 0,  20, 0, 0, 0,  0, 0, 0,  "
+      "5, 0,  5]}}"));
+  EXPECT_EQ(c.vehicle.added_mass_b(0, 1), 1.0);
+  EXPECT_EQ(c.vehicle.added_mass_b(1, 0), 1.0);
+  EXPECT_EQ(c.vehicle.added_mass_b(5, 5), 5.0);
+}
+
+TEST(Config, ErrorsNameTheFullKeyPathTheValueAndTheRange)
+{
+  std::string e = errorOf("cable: {length: -1}", "/tow_sim/");
+  EXPECT_NE(e.find("/tow_sim/cable.length = -1"), std::string::npos) << e;
+  EXPECT_NE(e.find("(0, 100000] [m]"), std::string::npos) << e;
+  e = errorOf("vehicle: {rudder: {lift_constnt: 3}}");
+  EXPECT_NE(e.find("vehicle.rudder.lift_constnt: unknown key"), std::string::npos) << e;
+  EXPECT_NE(e.find("lift_constant"), std::string::npos) << e;  // lists the known keys
+  e = errorOf("cable: {segments: many}");
+  EXPECT_NE(e.find("cable.segments: must be a number, got 'many'"), std::string::npos) << e;
+  e = errorOf("cable: {segments: 2.5}");
+  EXPECT_NE(e.find("cable.segments: must be a whole number"), std::string::npos) << e;
+  e = errorOf("environment: {current: [1, 2]}");
+  EXPECT_NE(e.find("environment.current: must be a list of 3 numbers"), std::string::npos) << e;
+  e = errorOf("environment: {water_density: .nan}");
+  EXPECT_NE(e.find("environment.water_density = nan"), std::string::npos) << e;
+  e = errorOf("vehicle: {added_mass: {approach: B, matrix: [1, 2, 3]}}");
+  EXPECT_NE(e.find("vehicle.added_mass.matrix: must hold 36 numbers"), std::string::npos) << e;
+  e = errorOf("vehicle: {added_mass: {approach: B, matrix: [1, 0, 0, 0, 0, 0,  -1, 0, 0, 0, 0,  1, 0, 0, 0,  1, 0, "
+              "0,  1, 0,  1]}}");
+  EXPECT_NE(e.find("vehicle.added_mass.matrix is not positive semi-definite"), std::string::npos) << e;
+  e = errorOf("vehicle: {inertia: {xx: -1}}");
+  EXPECT_NE(e.find("vehicle.inertia"), std::string::npos) << e;
+  e = errorOf("vehicle: {cg_from_bail: 5}");
+  EXPECT_NE(e.find("vehicle.cg_from_bail = 5"), std::string::npos) << e;
+  e = errorOf("vehicle: {elevator: {drag_table: {angles: [0, 1], values: [0.1, 0.2]}}}");
+  EXPECT_NE(e.find("vehicle.elevator.drag_table: angles must run from 0 to pi/2"), std::string::npos) << e;
+  e = errorOf("numerics: {stepper: euler}");
+  EXPECT_NE(e.find("numerics.stepper: = 'euler' must be 'dopri5' or 'rk4'"), std::string::npos) << e;
+  e = errorOf("cable: 3");
+  EXPECT_NE(e.find("cable: must be a mapping"), std::string::npos) << e;
+  EXPECT_THROW(loadConfigFile("/nonexistent/tow_sim.yaml"), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace tow_sim
