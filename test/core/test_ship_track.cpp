@@ -1,0 +1,72 @@
+// The tow-point track rebuilt from samples: exact on a constant-acceleration path, continuous position,
+// velocity and acceleration across samples, bounded extrapolation, rejected samples.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "tow_sim/core/ship_track.h"
+
+namespace tow_sim
+{
+namespace
+{
+TEST(ShipTrack, ReproducesAConstantAccelerationPathExactly)
+{
+  const Eigen::Vector3d p0(1, 2, 0), v0(2, 0.5, 0), a(0.1, -0.2, 0);
+  ShipTrack track;
+  for (int i = 0; i <= 20; ++i)
+  {
+    const double t = 0.1 * i;
+    ASSERT_TRUE(track.add(t, p0 + v0 * t + 0.5 * a * t * t, v0 + a * t));
+  }
+  for (double t = 0.1; t < 1.9; t += 0.0137)
+  {
+    const ShipEndState s = track(t);
+    EXPECT_LT((s.p_W - (p0 + v0 * t + 0.5 * a * t * t)).norm(), 1e-9) << t;
+    EXPECT_LT((s.v_W - (v0 + a * t)).norm(), 1e-9) << t;
+    EXPECT_LT((s.a_W - a).norm(), 1e-9) << t;
+  }
+}
+
+TEST(ShipTrack, TurningShipIsFollowedWithContinuousAcceleration)
+{
+  // A 2 m/s turn of radius 100 m sampled at 10 Hz.
+  const double speed = 2.0, radius = 100.0, w = speed / radius;
+  ShipTrack track;
+  for (int i = 0; i <= 100; ++i)
+  {
+    const double t = 0.1 * i;
+    track.add(t, radius * Eigen::Vector3d(std::sin(w * t), 1 - std::cos(w * t), 0),
+              speed * Eigen::Vector3d(std::cos(w * t), std::sin(w * t), 0));
+  }
+  double worst_jump = 0.0;
+  for (int k = 1; k < 90; ++k)
+  {
+    const double knot = 0.1 * k + 0.05;
+    const ShipEndState before = track(knot - 1e-9), after = track(knot + 1e-9);
+    worst_jump = std::max(worst_jump, (after.a_W - before.a_W).norm());
+    const ShipEndState s = track(knot + 0.031);
+    const double t = knot + 0.031;
+    EXPECT_LT((s.p_W - radius * Eigen::Vector3d(std::sin(w * t), 1 - std::cos(w * t), 0)).norm(), 1e-6);
+    EXPECT_NEAR(s.a_W.norm(), speed * speed / radius, 1e-4);
+  }
+  EXPECT_LT(worst_jump, 1e-6);
+}
+
+TEST(ShipTrack, ExtrapolatesForABoundedTimeAndRejectsBadSamples)
+{
+  ShipTrack track(0.5);
+  EXPECT_TRUE(track.add(0.0, Eigen::Vector3d::Zero(), Eigen::Vector3d(1, 0, 0)));
+  EXPECT_TRUE(track.add(1.0, Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(1, 0, 0)));
+  EXPECT_NEAR(track(1.3).p_W.x(), 1.3, 1e-12);
+  EXPECT_NEAR(track(5.0).p_W.x(), 1.5, 1e-12);  // held after 0.5 s
+  EXPECT_FALSE(track.add(1.0, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()));  // duplicate stamp
+  EXPECT_FALSE(track.add(0.5, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()));  // reordered
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(track.add(2.0, Eigen::Vector3d(nan, 0, 0), Eigen::Vector3d::Zero()));
+  EXPECT_DOUBLE_EQ(track.newestTime(), 1.0);
+}
+
+}  // namespace
+}  // namespace tow_sim
