@@ -114,10 +114,10 @@ void FinServo::reset(double t, double angle)
   angle0_ = target_ = std::clamp(angle, -max_deflection_, max_deflection_);
 }
 
-FinLoads finPairLoads(const FinPairParams& fin, FinPlane plane, double angle, const Eigen::Vector3d& v_W,
+FinPairLoads finPairLoads(const FinPairParams& fin, FinPlane plane, double angle, const Eigen::Vector3d& v_W,
                       const Eigen::Vector3d& x_b, const Eigen::Vector3d& y_b, const Eigen::Vector3d& z_b, double arm)
 {
-  FinLoads out;
+  FinPairLoads out;
   out.angle = angle;
   const bool vertical = plane == FinPlane::kVertical;
   const Eigen::Vector3d& normal = vertical ? z_b : y_b;     // normal to the plane of deflection

@@ -113,7 +113,7 @@ struct Vehicle::Loads
 {
   Vector6d wrench;  // at the CG, world
   double rudder = 0.0, elevator = 0.0, thrust = 0.0;
-  FinLoads rudder_loads, elevator_loads;
+  FinPairLoads rudder_loads, elevator_loads;
 };
 
 Vehicle::Vehicle(const VehicleParams& params, const NumericsParams& numerics)
@@ -264,7 +264,7 @@ VehicleOutputs Vehicle::outputs(double t, const ElementKinematics& k, const Envi
   o.thrust = l.thrust;
   o.rudder_loads = l.rudder_loads;
   o.elevator_loads = l.elevator_loads;
-  for (FinLoads* f : { &o.rudder_loads, &o.elevator_loads })
+  for (FinPairLoads* f : { &o.rudder_loads, &o.elevator_loads })
   {
     f->lift_B = R.transpose() * f->lift_W;
     f->drag_B = R.transpose() * f->drag_W;

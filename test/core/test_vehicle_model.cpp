@@ -71,7 +71,7 @@ TEST(Fins, NoLiftAtZeroAngleOfAttackAndTheInflowAngleIsMeasuredInTheFinPlane)
   FinPairParams fin;
   const Eigen::Vector3d x_b = Eigen::Vector3d::UnitX(), y_b = Eigen::Vector3d::UnitY(), z_b = Eigen::Vector3d::UnitZ();
   // Moving straight ahead with the fin centred: drag only.
-  FinLoads l = finPairLoads(fin, FinPlane::kVertical, 0.0, 2.0 * x_b, x_b, y_b, z_b, 1.0);
+  FinPairLoads l = finPairLoads(fin, FinPlane::kVertical, 0.0, 2.0 * x_b, x_b, y_b, z_b, 1.0);
   EXPECT_EQ(l.lift_W.norm(), 0.0);
   EXPECT_GT(l.drag_W.norm(), 0.0);
   EXPECT_LT(l.drag_W.x(), 0.0);

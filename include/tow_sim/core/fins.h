@@ -67,7 +67,7 @@ private:
 };
 
 // Loads on one fin pair, body or world axes as stated.
-struct FinLoads
+struct FinPairLoads
 {
   double angle = 0.0;              // [rad] actual deflection
   double angle_of_attack = 0.0;    // [rad] deflection minus inflow angle (alpha - alpha_1)
@@ -90,7 +90,7 @@ enum class FinPlane
 
 // Loads of a fin pair whose point moves through the water at v_W (world), body axes x_b, y_b, z_b (world),
 // deflected by `angle`, lying `arm` metres aft of the CG along s = -x_b.
-FinLoads finPairLoads(const FinPairParams& fin, FinPlane plane, double angle, const Eigen::Vector3d& v_W,
+FinPairLoads finPairLoads(const FinPairParams& fin, FinPlane plane, double angle, const Eigen::Vector3d& v_W,
                       const Eigen::Vector3d& x_b, const Eigen::Vector3d& y_b, const Eigen::Vector3d& z_b, double arm);
 
 }  // namespace tow_sim

@@ -107,7 +107,7 @@ struct VehicleOutputs
   double yaw = 0.0;                   // [rad] heading of x_b from world x, counter-clockwise (ENU)
   double rudder = 0.0, elevator = 0.0;  // [rad] actual fin angles
   double thrust = 0.0;                // [N] actual thrust
-  FinLoads rudder_loads, elevator_loads;
+  FinPairLoads rudder_loads, elevator_loads;
 };
 
 class Vehicle : public EndBody

@@ -1,0 +1,99 @@
+// The ROS adapter around the core: ship odometry and fin commands in; cable state, markers, vehicle
+// odometry, fin loads, tf and diagnostics out. Time comes from ros::Time (wall or /clock); the
+// simulation runs `odom_delay` behind it so that the ship's motion is interpolated between odometry
+// messages, and extrapolates at most `max_extrapolation` past the newest one before it holds.
+#pragma once
+
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <geometry_msgs/Vector3Stamped.h>
+#include <nav_msgs/Odometry.h>
+#include <ros/ros.h>
+#include <std_srvs/SetBool.h>
+#include <std_srvs/Trigger.h>
+#include <tf2_ros/transform_broadcaster.h>
+
+#include <memory>
+#include <string>
+
+#include "tow_sim/FinCommand.h"
+#include "tow_sim/core/config.h"
+#include "tow_sim/core/ship_track.h"
+#include "tow_sim/core/simulator.h"
+#include "tow_sim/core/vehicle.h"
+
+namespace tow_sim
+{
+// Node-level parameters (besides the core's cable/vehicle/environment/numerics), with their ranges.
+struct NodeParams
+{
+  std::string world_frame = "odom";       // frame of ship/odom, current and every output
+  std::string vehicle_frame = "tow_vehicle";  // tf child frame of the vehicle CG
+  Eigen::Vector3d tow_point_S = Eigen::Vector3d(-20.0, 0.0, 0.0);  // [m] tow point in the ship frame (FLU)
+  double physics_rate = 50.0;             // [Hz] integration ticks, [1, 1000]
+  double publish_rate = 10.0;             // [Hz] state, markers, odometry, tf, [0.1, 100]
+  double odom_delay = 0.2;                // [s] the simulation runs this far behind the clock, [0, 10]
+  double max_extrapolation = 1.0;         // [s] past the newest odometry, then hold, [0, 60]
+  double max_ship_speed = 25.0;           // [m/s] odometry implying a faster jump is rejected, (0, 1000]
+  std::string initial_shape = "line";     // line: straight astern at initial_angle; hanging: straight down
+  double initial_angle = 0.5;             // [rad] below the horizontal for "line", [0, pi/2]
+  double tension_color_max = 5000.0;      // [N] red end of the cable colour scale, (0, 1e9]
+  double force_arrow_scale = 0.01;        // [m/N] length of the tow-force arrow per newton, (0, 10]
+  double cable_marker_width = 0.5;        // [m] drawn width of the cable line, (0, 100]
+  double vehicle_diameter = 0.3;          // [m] drawn hull diameter, (0, 100]
+  bool print_status = false;              // print a status line each second (headless demo)
+};
+
+class TowSimNode
+{
+public:
+  // Reads and validates every parameter; throws std::invalid_argument naming the full parameter path.
+  TowSimNode(ros::NodeHandle nh, ros::NodeHandle pnh);
+
+private:
+  void onOdometry(const nav_msgs::Odometry::ConstPtr& msg);
+  void onFinCommand(const tow_sim::FinCommand::ConstPtr& msg);
+  void onCurrent(const geometry_msgs::Vector3Stamped::ConstPtr& msg);
+  bool onReset(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
+  bool onSetPaused(std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res);
+  void physicsTick(const ros::TimerEvent& event);
+  void publishTick(const ros::TimerEvent& event);
+  void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
+
+  void start(double t);  // the initial shape at the ship's pose at time t (relative)
+  double relative(const ros::Time& stamp) const { return (stamp - time_origin_).toSec(); }
+  ros::Time absolute(double t) const { return time_origin_ + ros::Duration(t); }
+
+  ros::NodeHandle nh_, pnh_;
+  NodeParams params_;
+  SimulationConfig config_;
+  std::shared_ptr<Vehicle> vehicle_;
+  std::shared_ptr<ChainModel> model_;
+  std::unique_ptr<Simulator> sim_;
+  ShipTrack track_;
+  AttitudeHold attitude_;
+
+  ros::Time time_origin_;
+  bool started_ = false;
+  bool paused_ = false;
+  Eigen::Quaterniond ship_attitude_ = Eigen::Quaterniond::Identity();
+  Eigen::Vector3d track_direction_ = Eigen::Vector3d::UnitX();  // ship heading, horizontal unit
+  double last_odom_wall_ = 0.0;  // [s] wall time of the last accepted odometry
+
+  // Diagnostics.
+  double realtime_factor_ = 0.0;
+  double lag_ = 0.0;
+  int rejected_steps_ = 0;
+  int rejected_messages_ = 0;
+  int restarts_ = 0;
+  double max_length_error_ = 0.0;
+  bool holding_ = false;
+
+  ros::Subscriber odom_sub_, fin_sub_, current_sub_;
+  ros::Publisher state_pub_, marker_pub_, vehicle_odom_pub_, fin_loads_pub_;
+  ros::ServiceServer reset_srv_, pause_srv_;
+  ros::Timer physics_timer_, publish_timer_, status_timer_;
+  tf2_ros::TransformBroadcaster tf_broadcaster_;
+  diagnostic_updater::Updater diagnostics_;
+};
+
+}  // namespace tow_sim

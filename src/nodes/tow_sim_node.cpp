@@ -1,0 +1,20 @@
+// tow_sim_node: the towing simulation. Parameters, topics and services: README.md.
+#include <ros/ros.h>
+
+#include "tow_sim/ros/tow_sim_node.h"
+
+int main(int argc, char** argv)
+{
+  ros::init(argc, argv, "tow_sim");
+  try
+  {
+    tow_sim::TowSimNode node(ros::NodeHandle(), ros::NodeHandle("~"));
+    ros::spin();
+  }
+  catch (const std::exception& e)
+  {
+    ROS_FATAL("tow_sim: bad configuration: %s", e.what());
+    return 1;
+  }
+  return 0;
+}

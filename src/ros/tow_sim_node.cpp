@@ -1,0 +1,411 @@
+#include "tow_sim/ros/tow_sim_node.h"
+
+#include <geometry_msgs/TransformStamped.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "tow_sim/CableState.h"
+#include "tow_sim/FinLoads.h"
+#include "tow_sim/ros/conversions.h"
+#include "tow_sim/ros/markers.h"
+
+namespace tow_sim
+{
+namespace
+{
+// The core names keys "section.key"; on the parameter server they are "section/key".
+std::invalid_argument withSlashes(const std::invalid_argument& e)
+{
+  std::string message = e.what();
+  const size_t end = message.find_first_of(" :");
+  for (size_t i = 0; i < end && i < message.size(); ++i)
+    if (message[i] == '.')
+      message[i] = '/';
+  return std::invalid_argument(message);
+}
+
+double readDouble(const ros::NodeHandle& pnh, const std::string& key, double fallback, double lo, double hi,
+                  const char* unit, bool lo_open = false)
+{
+  double value = fallback;
+  if (pnh.hasParam(key) && !pnh.getParam(key, value))
+    throw std::invalid_argument(pnh.resolveName(key) + ": must be a number " + unit);
+  requireInRange(pnh.resolveName(key), value, lo, hi, unit, lo_open);
+  return value;
+}
+
+std::string readString(const ros::NodeHandle& pnh, const std::string& key, const std::string& fallback)
+{
+  std::string value = fallback;
+  if (pnh.hasParam(key) && !pnh.getParam(key, value))
+    throw std::invalid_argument(pnh.resolveName(key) + ": must be a string");
+  return value;
+}
+
+NodeParams readNodeParams(const ros::NodeHandle& pnh)
+{
+  NodeParams p;
+  p.world_frame = readString(pnh, "world_frame", p.world_frame);
+  p.vehicle_frame = readString(pnh, "vehicle_frame", p.vehicle_frame);
+  if (p.world_frame.empty() || p.vehicle_frame.empty() || p.world_frame == p.vehicle_frame)
+    throw std::invalid_argument(pnh.resolveName("vehicle_frame") + ": world_frame and vehicle_frame must be "
+                                                                     "non-empty and different");
+  std::vector<double> tow;
+  if (pnh.hasParam("tow_point"))
+  {
+    if (!pnh.getParam("tow_point", tow) || tow.size() != 3)
+      throw std::invalid_argument(pnh.resolveName("tow_point") + ": must be a list of 3 numbers [x, y, z] [m] in "
+                                                                  "the ship frame");
+    for (int i = 0; i < 3; ++i)
+      requireInRange(pnh.resolveName("tow_point") + "[" + std::to_string(i) + "]", tow[i], -1000.0, 1000.0, "[m]");
+    p.tow_point_S = Eigen::Vector3d(tow[0], tow[1], tow[2]);
+  }
+  p.physics_rate = readDouble(pnh, "physics_rate", p.physics_rate, 1.0, 1000.0, "[Hz]");
+  p.publish_rate = readDouble(pnh, "publish_rate", p.publish_rate, 0.1, 100.0, "[Hz]");
+  p.odom_delay = readDouble(pnh, "odom_delay", p.odom_delay, 0.0, 10.0, "[s]");
+  p.max_extrapolation = readDouble(pnh, "max_extrapolation", p.max_extrapolation, 0.0, 60.0, "[s]");
+  p.max_ship_speed = readDouble(pnh, "max_ship_speed", p.max_ship_speed, 0.0, 1000.0, "[m/s]", true);
+  p.initial_shape = readString(pnh, "initial_shape", p.initial_shape);
+  if (p.initial_shape != "line" && p.initial_shape != "hanging")
+    throw std::invalid_argument(pnh.resolveName("initial_shape") + " = '" + p.initial_shape +
+                                "' must be 'line' or 'hanging'");
+  p.initial_angle = readDouble(pnh, "initial_angle", p.initial_angle, 0.0, M_PI / 2, "[rad]");
+  p.tension_color_max = readDouble(pnh, "tension_color_max", p.tension_color_max, 0.0, 1e9, "[N]", true);
+  p.force_arrow_scale = readDouble(pnh, "force_arrow_scale", p.force_arrow_scale, 0.0, 10.0, "[m/N]", true);
+  p.cable_marker_width = readDouble(pnh, "cable_marker_width", p.cable_marker_width, 0.0, 100.0, "[m]", true);
+  p.vehicle_diameter = readDouble(pnh, "vehicle_diameter", p.vehicle_diameter, 0.0, 100.0, "[m]", true);
+  pnh.param("print_status", p.print_status, p.print_status);
+  return p;
+}
+
+SimulationConfig readConfig(const ros::NodeHandle& pnh)
+{
+  XmlRpc::XmlRpcValue tree;
+  YAML::Node root;
+  if (pnh.getParam(pnh.getNamespace(), tree))
+    root = ros_conv::toYaml(tree);
+  try
+  {
+    return loadConfig(root, pnh.getNamespace() + "/");
+  }
+  catch (const std::invalid_argument& e)
+  {
+    throw withSlashes(e);
+  }
+}
+
+bool finite(const geometry_msgs::Point& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
+bool finite(const geometry_msgs::Vector3& p)
+{
+  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+}
+}  // namespace
+
+TowSimNode::TowSimNode(ros::NodeHandle nh, ros::NodeHandle pnh)
+  : nh_(nh), pnh_(pnh), params_(readNodeParams(pnh)), config_(readConfig(pnh)), track_(params_.max_extrapolation)
+{
+  vehicle_ = std::make_shared<Vehicle>(config_.vehicle, config_.numerics);
+  model_ = std::make_shared<ChainModel>(config_.cable, vehicle_, config_.environment, config_.numerics);
+  diagnostics_.setHardwareID("tow_sim");
+  diagnostics_.add("simulation", this, &TowSimNode::diagnose);
+
+  odom_sub_ = nh_.subscribe("ship/odom", 50, &TowSimNode::onOdometry, this);
+  fin_sub_ = nh_.subscribe("fins/command", 10, &TowSimNode::onFinCommand, this);
+  current_sub_ = nh_.subscribe("current", 10, &TowSimNode::onCurrent, this);
+  state_pub_ = nh_.advertise<tow_sim::CableState>("cable/state", 10);
+  marker_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("cable/markers", 2);
+  vehicle_odom_pub_ = nh_.advertise<nav_msgs::Odometry>("vehicle/odom", 10);
+  fin_loads_pub_ = nh_.advertise<tow_sim::FinLoads>("vehicle/fin_loads", 10);
+  reset_srv_ = pnh_.advertiseService("reset", &TowSimNode::onReset, this);
+  pause_srv_ = pnh_.advertiseService("set_paused", &TowSimNode::onSetPaused, this);
+  physics_timer_ = nh_.createTimer(ros::Duration(1.0 / params_.physics_rate), &TowSimNode::physicsTick, this);
+  publish_timer_ = nh_.createTimer(ros::Duration(1.0 / params_.publish_rate), &TowSimNode::publishTick, this);
+  if (params_.print_status)
+    status_timer_ = nh_.createTimer(ros::Duration(1.0), [this](const ros::TimerEvent&) {
+      if (!started_)
+      {
+        ROS_INFO("waiting for ship odometry on %s", odom_sub_.getTopic().c_str());
+        return;
+      }
+      const VehicleOutputs o =
+          vehicle_->outputs(sim_->time(), sim_->elementKinematics(model_->segments()), model_->environment());
+      const Diversion d = lateralDiversion(o.p_cg_W, o.v_cg_W, sim_->shipEnd(), track_direction_);
+      ROS_INFO("t %7.1f s | ship %4.2f m/s | vehicle depth %6.1f m, diversion %6.2f m | tension ship %7.0f N, "
+               "vehicle %6.0f N",
+               sim_->time(), sim_->shipEnd().v_W.norm(), o.depth, d.offset, sim_->tensions().col(0).norm(),
+               sim_->tensions().col(model_->segments()).norm());
+    });
+  ROS_INFO("tow_sim: %.0f m cable in %d segments, %.0f kg vehicle; waiting for %s in frame '%s'",
+           config_.cable.length, config_.cable.segments, config_.vehicle.mass, odom_sub_.getTopic().c_str(),
+           params_.world_frame.c_str());
+}
+
+void TowSimNode::start(double t)
+{
+  const ShipEndState ship = track_(t);
+  Eigen::Vector3d heading(track_direction_.x(), track_direction_.y(), 0.0);
+  Eigen::Vector3d direction = -Eigen::Vector3d::UnitZ();
+  if (params_.initial_shape == "line")
+    direction = -std::cos(params_.initial_angle) * heading - std::sin(params_.initial_angle) * Eigen::Vector3d::UnitZ();
+  if (!sim_)
+    sim_ = std::make_unique<Simulator>(model_, [this](double time) { return track_(time); });
+  sim_->reset(t, straightChain(*model_, ship.p_W, direction, ship.v_W));
+  vehicle_->resetActuators(t);
+  attitude_.reset();
+  started_ = true;
+}
+
+void TowSimNode::onOdometry(const nav_msgs::Odometry::ConstPtr& msg)
+{
+  auto reject = [this](const std::string& why) {
+    ++rejected_messages_;
+    ROS_WARN_THROTTLE(2.0, "tow_sim: rejected ship odometry: %s", why.c_str());
+  };
+  if (msg->header.frame_id != params_.world_frame)
+    return reject("header.frame_id = '" + msg->header.frame_id + "', expected the world frame '" +
+                  params_.world_frame + "' (parameter ~world_frame)");
+  const auto& pose = msg->pose.pose;
+  const auto& twist = msg->twist.twist;
+  if (!finite(pose.position) || !finite(twist.linear) || !finite(twist.angular) || !std::isfinite(pose.orientation.w) ||
+      !std::isfinite(pose.orientation.x) || !std::isfinite(pose.orientation.y) || !std::isfinite(pose.orientation.z))
+    return reject("a pose or twist field is not finite");
+  Eigen::Quaterniond q(pose.orientation.w, pose.orientation.x, pose.orientation.y, pose.orientation.z);
+  if (std::abs(q.norm() - 1.0) > 0.01)
+    return reject("pose.pose.orientation has norm " + std::to_string(q.norm()) + ", must be within 0.01 of 1");
+  q.normalize();
+  const ros::Time now = ros::Time::now();
+  const ros::Time stamp = msg->header.stamp.isZero() ? now : msg->header.stamp;
+  if (stamp > now + ros::Duration(1.0))
+    return reject("header.stamp is " + std::to_string((stamp - now).toSec()) + " s in the future");
+  if (!started_ && track_.empty())
+    time_origin_ = stamp - ros::Duration(params_.odom_delay + 1.0);
+  const double t = relative(stamp);
+  if (!track_.empty() && t <= track_.newestTime())
+    return reject("header.stamp is not after the previous message's (duplicated or reordered)");
+  const Eigen::Matrix3d R = q.toRotationMatrix();
+  const Eigen::Vector3d p(pose.position.x, pose.position.y, pose.position.z);
+  const Eigen::Vector3d tow_W = p + R * params_.tow_point_S;
+  // REP-105: the twist is in the child (ship) frame.
+  const Eigen::Vector3d v = R * Eigen::Vector3d(twist.linear.x, twist.linear.y, twist.linear.z);
+  const Eigen::Vector3d w = R * Eigen::Vector3d(twist.angular.x, twist.angular.y, twist.angular.z);
+  const Eigen::Vector3d v_tow = v + w.cross(R * params_.tow_point_S);
+  if (v_tow.norm() > params_.max_ship_speed)
+    return reject("tow-point speed " + std::to_string(v_tow.norm()) + " m/s exceeds ~max_ship_speed");
+  if (!track_.empty())
+  {
+    const double dt = t - track_.newestTime();
+    const double jump = (tow_W - track_(t).p_W).norm();
+    if (jump > params_.max_ship_speed * dt + 10.0)
+      return reject("the tow point jumped " + std::to_string(jump) + " m from where the previous message put it");
+  }
+  track_.add(t, tow_W, v_tow);
+  ship_attitude_ = q;
+  const Eigen::Vector3d heading(R(0, 0), R(1, 0), 0.0);
+  if (heading.norm() > 1e-6)
+    track_direction_ = heading.normalized();
+  last_odom_wall_ = ros::WallTime::now().toSec();
+  if (!started_)
+  {
+    start(t);
+    ROS_INFO("tow_sim: first ship odometry received, cable laid out (%s) at the tow point", params_.initial_shape.c_str());
+  }
+}
+
+void TowSimNode::onFinCommand(const tow_sim::FinCommand::ConstPtr& msg)
+{
+  if (!std::isfinite(msg->rudder) || !std::isfinite(msg->elevator) || !std::isfinite(msg->thrust))
+  {
+    ++rejected_messages_;
+    ROS_WARN_THROTTLE(2.0, "tow_sim: rejected fins/command: rudder, elevator and thrust must be finite");
+    return;
+  }
+  const double t = started_ ? sim_->time() : 0.0;
+  if (vehicle_->command(t, msg->rudder, msg->elevator, msg->thrust))
+    ROS_WARN_THROTTLE(2.0, "tow_sim: fins/command saturated: |rudder| <= %.3f rad, |elevator| <= %.3f rad, |thrust| "
+                           "<= %.0f N",
+                      config_.vehicle.rudder.max_deflection, config_.vehicle.elevator.max_deflection,
+                      config_.vehicle.max_thrust);
+}
+
+void TowSimNode::onCurrent(const geometry_msgs::Vector3Stamped::ConstPtr& msg)
+{
+  if (!msg->header.frame_id.empty() && msg->header.frame_id != params_.world_frame)
+  {
+    ++rejected_messages_;
+    ROS_WARN_THROTTLE(2.0, "tow_sim: rejected current: header.frame_id = '%s', expected '%s'",
+                      msg->header.frame_id.c_str(), params_.world_frame.c_str());
+    return;
+  }
+  try
+  {
+    model_->setCurrent(Eigen::Vector3d(msg->vector.x, msg->vector.y, msg->vector.z));
+  }
+  catch (const std::invalid_argument& e)
+  {
+    ++rejected_messages_;
+    ROS_WARN_THROTTLE(2.0, "tow_sim: rejected current: %s", e.what());
+  }
+}
+
+bool TowSimNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res)
+{
+  if (track_.empty())
+  {
+    res.success = false;
+    res.message = "no ship odometry yet";
+    return true;
+  }
+  start(started_ ? sim_->time() : track_.newestTime());
+  res.success = true;
+  res.message = "restarted from the initial shape at the current ship pose";
+  return true;
+}
+
+bool TowSimNode::onSetPaused(std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res)
+{
+  paused_ = req.data;
+  res.success = true;
+  res.message = paused_ ? "paused" : "running";
+  return true;
+}
+
+void TowSimNode::physicsTick(const ros::TimerEvent&)
+{
+  if (!started_ || paused_)
+    return;
+  const double wanted = relative(ros::Time::now()) - params_.odom_delay;
+  const double available = track_.newestTime() + params_.max_extrapolation;
+  holding_ = wanted > available;
+  if (holding_)
+    ROS_WARN_THROTTLE(5.0, "tow_sim: ship odometry is %.1f s old: holding the simulation until it resumes",
+                      wanted - track_.newestTime());
+  // Bounded work per tick, so callbacks are never starved; the lag shows in diagnostics.
+  const double target = std::min({ wanted, available, sim_->time() + 0.5 });
+  lag_ = wanted - sim_->time();
+  if (target <= sim_->time())
+    return;
+  const ros::WallTime wall_start = ros::WallTime::now();
+  const double t0 = sim_->time();
+  try
+  {
+    const StepReport report = sim_->advanceTo(target);
+    rejected_steps_ += report.rejected;
+    max_length_error_ = report.max_length_error;
+  }
+  catch (const std::runtime_error& e)
+  {
+    ++restarts_;
+    ROS_ERROR("tow_sim: %s; restarting from the initial shape at the current ship pose", e.what());
+    start(sim_->time());
+  }
+  const double wall = (ros::WallTime::now() - wall_start).toSec();
+  if (wall > 0.0)
+    realtime_factor_ = 0.9 * realtime_factor_ + 0.1 * ((sim_->time() - t0) / wall);
+}
+
+void TowSimNode::publishTick(const ros::TimerEvent&)
+{
+  diagnostics_.update();
+  if (!started_)
+    return;
+  const int nu = model_->segments();
+  const ElementKinematics k = sim_->elementKinematics(nu);
+  const VehicleOutputs o = vehicle_->outputs(sim_->time(), k, model_->environment());
+  const Eigen::Matrix3Xd joints = sim_->jointPositions();
+  const Eigen::Matrix3Xd& tensions = sim_->tensions();
+  if (!joints.allFinite() || !tensions.allFinite() || !o.p_cg_W.allFinite() || !o.v_cg_W.allFinite())
+  {
+    ROS_ERROR_THROTTLE(2.0, "tow_sim: non-finite state; not published");
+    return;
+  }
+  std_msgs::Header header;
+  header.stamp = absolute(sim_->time());
+  header.frame_id = params_.world_frame;
+  const ShipEndState ship = sim_->shipEnd();
+  const Diversion d = lateralDiversion(o.p_cg_W, o.v_cg_W, ship, track_direction_);
+
+  tow_sim::CableState state;
+  state.header = header;
+  for (int j = 0; j < joints.cols(); ++j)
+    state.joints.push_back(ros_conv::toPoint(joints.col(j)));
+  for (int j = 0; j <= nu; ++j)
+  {
+    state.tension.push_back(tensions.col(j).norm());
+    state.tension_vector.push_back(ros_conv::toVector3(tensions.col(j)));
+    state.slack.push_back(tensions.col(j).dot(joints.col(j + 1) - joints.col(j)) > 0.0);
+  }
+  state.tension_ship = tensions.col(0).norm();
+  state.tension_vehicle = tensions.col(nu).norm();
+  state.vehicle_depth = o.depth;
+  state.layback = (ship.p_W - o.p_cg_W).dot(track_direction_);
+  state.diversion = d.offset;
+  state.diversion_rate = d.rate;
+  state.cable_length = config_.cable.length;
+  state.max_length_error = max_length_error_;
+  state_pub_.publish(state);
+
+  const Eigen::Quaterniond q = attitude_.update(o.q_WB * Eigen::Vector3d::UnitX());
+  const Eigen::Matrix3d R = q.toRotationMatrix();
+  nav_msgs::Odometry odom;
+  odom.header = header;
+  odom.child_frame_id = params_.vehicle_frame;
+  odom.pose.pose.position = ros_conv::toPoint(o.p_cg_W);
+  odom.pose.pose.orientation = ros_conv::toQuaternion(q);
+  odom.twist.twist.linear = ros_conv::toVector3(R.transpose() * o.v_cg_W);
+  odom.twist.twist.angular = ros_conv::toVector3(R.transpose() * o.omega_W);
+  vehicle_odom_pub_.publish(odom);
+
+  geometry_msgs::TransformStamped tf;
+  tf.header = header;
+  tf.child_frame_id = params_.vehicle_frame;
+  tf.transform.translation = ros_conv::toVector3(o.p_cg_W);
+  tf.transform.rotation = odom.pose.pose.orientation;
+  tf_broadcaster_.sendTransform(tf);
+
+  tow_sim::FinLoads loads;
+  loads.header = header;
+  loads.header.frame_id = params_.vehicle_frame;
+  loads.rudder_angle = o.rudder;
+  loads.elevator_angle = o.elevator;
+  loads.thrust = o.thrust;
+  loads.rudder_angle_of_attack = o.rudder_loads.angle_of_attack;
+  loads.elevator_angle_of_attack = o.elevator_loads.angle_of_attack;
+  loads.rudder_lift = ros_conv::toVector3(o.rudder_loads.lift_B);
+  loads.rudder_drag = ros_conv::toVector3(o.rudder_loads.drag_B);
+  loads.rudder_moment = ros_conv::toVector3(o.rudder_loads.moment_cg_B);
+  loads.rudder_hinge_moment = o.rudder_loads.hinge_moment;
+  loads.elevator_lift = ros_conv::toVector3(o.elevator_loads.lift_B);
+  loads.elevator_drag = ros_conv::toVector3(o.elevator_loads.drag_B);
+  loads.elevator_moment = ros_conv::toVector3(o.elevator_loads.moment_cg_B);
+  loads.elevator_hinge_moment = o.elevator_loads.hinge_moment;
+  fin_loads_pub_.publish(loads);
+
+  if (marker_pub_.getNumSubscribers() > 0)
+    marker_pub_.publish(makeMarkers(*sim_, *vehicle_, o, q, params_, header));
+}
+
+void TowSimNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
+{
+  using diagnostic_msgs::DiagnosticStatus;
+  if (!started_)
+    status.summary(DiagnosticStatus::WARN, "waiting for ship odometry");
+  else if (holding_)
+    status.summary(DiagnosticStatus::WARN, "ship odometry is late: holding");
+  else if (lag_ > 1.0)
+    status.summary(DiagnosticStatus::WARN, "cannot keep up with the clock");
+  else if (paused_)
+    status.summary(DiagnosticStatus::OK, "paused");
+  else
+    status.summary(DiagnosticStatus::OK, "running");
+  status.add("real-time factor", realtime_factor_);
+  status.add("lag behind the clock [s]", lag_);
+  status.add("odometry age [s]", last_odom_wall_ > 0.0 ? ros::WallTime::now().toSec() - last_odom_wall_ : -1.0);
+  status.add("rejected steps", rejected_steps_);
+  status.add("rejected messages", rejected_messages_);
+  status.add("restarts after divergence", restarts_);
+  status.add("max relative length error", max_length_error_);
+}
+
+}  // namespace tow_sim
