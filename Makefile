@@ -3,7 +3,9 @@
 SHELL := /bin/bash
 .SHELLFLAGS := -e -o pipefail -c
 REPO := $(abspath $(dir $(lastword $(MAKEFILE_LIST))))
-WS ?= $(REPO)/.ws
+# The workspace sits beside the repository (a workspace inside it would contain a link to itself,
+# which rosrun cannot search).
+WS ?= $(abspath $(REPO)/../tow_sim_ws)
 # catkin and rostest need Debian's python3, not another one earlier on PATH.
 export PATH := /usr/bin:/bin:$(PATH)
 CATKIN_ARGS := -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3

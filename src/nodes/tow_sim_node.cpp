@@ -6,9 +6,10 @@
 int main(int argc, char** argv)
 {
   ros::init(argc, argv, "tow_sim");
+  ros::NodeHandle nh, pnh("~");  // outlive the node, so ROS is still up to report a failure
   try
   {
-    tow_sim::TowSimNode node(ros::NodeHandle(), ros::NodeHandle("~"));
+    tow_sim::TowSimNode node(nh, pnh);
     ros::spin();
   }
   catch (const std::exception& e)

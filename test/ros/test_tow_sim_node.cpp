@@ -1,0 +1,336 @@
+// rostest of tow_sim_node. The test plays the ship and the clock (use_sim_time): four nodes get the same
+// odometry, so the only differences between them are the commands the test sends.
+#include <gtest/gtest.h>
+
+#include <diagnostic_msgs/DiagnosticArray.h>
+#include <nav_msgs/Odometry.h>
+#include <ros/ros.h>
+#include <rosgraph_msgs/Clock.h>
+#include <std_srvs/SetBool.h>
+#include <std_srvs/Trigger.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_listener.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include "tow_sim/CableState.h"
+#include "tow_sim/FinCommand.h"
+
+namespace
+{
+const char* const kNodes[] = { "base", "elevator", "rudder", "robust" };
+
+struct Recorder
+{
+  std::mutex mutex;
+  std::map<std::string, tow_sim::CableState> state;
+  std::map<std::string, nav_msgs::Odometry> odom;
+  std::map<std::string, int> state_count, marker_count;
+  std::map<std::string, std::string> diagnostics;  // "<node>/<key>" -> value
+};
+
+class World
+{
+public:
+  World()
+  {
+    clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
+    odom_pub_ = nh_.advertise<nav_msgs::Odometry>("/ship/odom", 50);
+    robust_odom_pub_ = nh_.advertise<nav_msgs::Odometry>("/robust/ship/odom", 50);
+    for (const char* name : kNodes)
+    {
+      const std::string n = name;
+      subs_.push_back(nh_.subscribe<tow_sim::CableState>("/" + n + "/cable/state", 50,
+                                                         [this, n](const tow_sim::CableState::ConstPtr& m) {
+                                                           std::lock_guard<std::mutex> lock(rec_.mutex);
+                                                           rec_.state[n] = *m;
+                                                           ++rec_.state_count[n];
+                                                         }));
+      subs_.push_back(nh_.subscribe<nav_msgs::Odometry>("/" + n + "/vehicle/odom", 50,
+                                                        [this, n](const nav_msgs::Odometry::ConstPtr& m) {
+                                                          std::lock_guard<std::mutex> lock(rec_.mutex);
+                                                          rec_.odom[n] = *m;
+                                                        }));
+      subs_.push_back(nh_.subscribe<visualization_msgs::MarkerArray>(
+          "/" + n + "/cable/markers", 5, [this, n](const visualization_msgs::MarkerArray::ConstPtr&) {
+            std::lock_guard<std::mutex> lock(rec_.mutex);
+            ++rec_.marker_count[n];
+          }));
+      fin_pubs_[n] = nh_.advertise<tow_sim::FinCommand>("/" + n + "/fins/command", 5);
+    }
+    subs_.push_back(nh_.subscribe<diagnostic_msgs::DiagnosticArray>(
+        "/diagnostics", 50, [this](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
+          std::lock_guard<std::mutex> lock(rec_.mutex);
+          for (const auto& status : m->status)
+            for (const auto& kv : status.values)
+              rec_.diagnostics[status.name + "/" + kv.key] = kv.value;
+        }));
+    spinner_.start();
+    publishClock();
+    // Wait until every node listens to the ship before the first odometry, so all start alike.
+    const ros::WallTime give_up = ros::WallTime::now() + ros::WallDuration(60.0);
+    while ((odom_pub_.getNumSubscribers() < 3 || robust_odom_pub_.getNumSubscribers() < 1 ||
+            clock_pub_.getNumSubscribers() < 4) &&
+           ros::WallTime::now() < give_up)
+      ros::WallDuration(0.05).sleep();
+  }
+
+  // Advances the clock by `seconds` in 10 ms steps (about 4x faster than real time), the ship towing
+  // at 2 m/s along +x and its odometry at 20 Hz.
+  void advance(double seconds)
+  {
+    const int steps = static_cast<int>(std::round(seconds / 0.01));
+    for (int i = 0; i < steps; ++i)
+    {
+      time_ += 0.01;
+      publishClock();
+      if (++tick_ % 5 == 0)
+      {
+        nav_msgs::Odometry odom = shipOdometry();
+        odom_pub_.publish(odom);
+        robust_odom_pub_.publish(odom);
+      }
+      ros::WallDuration(0.0025).sleep();
+    }
+    ros::WallDuration(0.2).sleep();  // let the last messages arrive
+  }
+
+  nav_msgs::Odometry shipOdometry() const
+  {
+    nav_msgs::Odometry odom;
+    odom.header.stamp = ros::Time(time_);
+    odom.header.frame_id = "odom";
+    odom.child_frame_id = "ship";
+    odom.pose.pose.position.x = 2.0 * (time_ - 100.0);
+    odom.pose.pose.orientation.w = 1.0;
+    odom.twist.twist.linear.x = 2.0;
+    return odom;
+  }
+
+  void command(const std::string& node, double rudder, double elevator)
+  {
+    tow_sim::FinCommand cmd;
+    cmd.rudder = rudder;
+    cmd.elevator = elevator;
+    fin_pubs_[node].publish(cmd);
+  }
+
+  ros::NodeHandle nh_;
+  Recorder rec_;
+  double time_ = 100.0;
+  ros::Publisher robust_odom_pub_;
+
+private:
+  void publishClock()
+  {
+    rosgraph_msgs::Clock c;
+    c.clock = ros::Time(time_);
+    clock_pub_.publish(c);
+  }
+
+  long tick_ = 0;
+  ros::AsyncSpinner spinner_{ 2 };
+  ros::Publisher clock_pub_, odom_pub_;
+  std::map<std::string, ros::Publisher> fin_pubs_;
+  std::vector<ros::Subscriber> subs_;
+};
+
+std::unique_ptr<World> world;
+
+bool allFinite(const tow_sim::CableState& s)
+{
+  for (const auto& p : s.joints)
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      return false;
+  for (double t : s.tension)
+    if (!std::isfinite(t))
+      return false;
+  return std::isfinite(s.tension_ship) && std::isfinite(s.vehicle_depth) && std::isfinite(s.diversion) &&
+         std::isfinite(s.layback);
+}
+
+TEST(TowSimNode, PublishesStateAndMarkersAtTheConfiguredRates)
+{
+  world->advance(2.0);
+  int states0, markers0;
+  {
+    std::lock_guard<std::mutex> lock(world->rec_.mutex);
+    states0 = world->rec_.state_count["base"];
+    markers0 = world->rec_.marker_count["base"];
+  }
+  world->advance(10.0);
+  std::lock_guard<std::mutex> lock(world->rec_.mutex);
+  const int states = world->rec_.state_count["base"] - states0;
+  const int markers = world->rec_.marker_count["base"] - markers0;
+  std::printf("in 10 s of simulated time: %d cable/state, %d cable/markers (publish_rate 10 Hz)\n", states, markers);
+  EXPECT_NEAR(states, 100, 15);
+  EXPECT_NEAR(markers, 100, 15);
+  for (const char* name : kNodes)
+  {
+    const tow_sim::CableState& s = world->rec_.state[name];
+    EXPECT_EQ(s.joints.size(), 22u) << name;  // nu + 2 joints, ship first
+    EXPECT_EQ(s.tension.size(), 21u) << name;
+    EXPECT_TRUE(allFinite(s)) << name;
+    EXPECT_GT(s.tension_ship, 0.0) << name;
+    EXPECT_EQ(s.header.frame_id, "odom");
+  }
+}
+
+TEST(TowSimNode, TfToTheVehicleMatchesVehicleOdometry)
+{
+  tf2_ros::Buffer buffer;
+  tf2_ros::TransformListener listener(buffer);
+  world->advance(3.0);
+  nav_msgs::Odometry odom;
+  {
+    std::lock_guard<std::mutex> lock(world->rec_.mutex);
+    odom = world->rec_.odom["base"];
+  }
+  ASSERT_EQ(odom.child_frame_id, "base_vehicle");
+  const geometry_msgs::TransformStamped tf = buffer.lookupTransform("odom", "base_vehicle", odom.header.stamp,
+                                                                     ros::Duration(1.0));
+  EXPECT_NEAR(tf.transform.translation.x, odom.pose.pose.position.x, 1e-9);
+  EXPECT_NEAR(tf.transform.translation.y, odom.pose.pose.position.y, 1e-9);
+  EXPECT_NEAR(tf.transform.translation.z, odom.pose.pose.position.z, 1e-9);
+  EXPECT_NEAR(tf.transform.rotation.w, odom.pose.pose.orientation.w, 1e-9);
+  EXPECT_NEAR(tf.transform.rotation.z, odom.pose.pose.orientation.z, 1e-9);
+  EXPECT_LT(odom.pose.pose.position.z, -10.0);  // the vehicle is under water, astern of the ship
+}
+
+TEST(TowSimNode, ElevatorRaisesTheVehicleRudderMovesItToPort)
+{
+  for (int i = 0; i < 3; ++i)
+  {
+    world->command("elevator", 0.0, 0.3);
+    world->command("rudder", 0.3, 0.0);
+    world->advance(0.1);
+  }
+  world->advance(40.0);
+  std::lock_guard<std::mutex> lock(world->rec_.mutex);
+  const auto& base = world->rec_.state["base"];
+  const auto& up = world->rec_.state["elevator"];
+  const auto& port = world->rec_.state["rudder"];
+  std::printf("after 40 s: depth base %.3f m, elevator %.3f m; diversion base %.3f m, rudder %.3f m\n",
+              base.vehicle_depth, up.vehicle_depth, base.diversion, port.diversion);
+  EXPECT_LT(up.vehicle_depth, base.vehicle_depth - 0.1);
+  EXPECT_GT(port.diversion, base.diversion + 0.1);
+}
+
+TEST(TowSimNode, RejectsBadOdometryAndKeepsRunning)
+{
+  nav_msgs::Odometry good = world->shipOdometry();
+  auto send = [&](nav_msgs::Odometry m) {
+    m.header.stamp = ros::Time(world->time_ + 0.001);
+    world->robust_odom_pub_.publish(m);
+    ros::WallDuration(0.05).sleep();
+  };
+  nav_msgs::Odometry bad = good;
+  bad.pose.pose.position.x = std::numeric_limits<double>::quiet_NaN();
+  send(bad);
+  bad = good;
+  bad.pose.pose.orientation.w = 0.0;  // zero quaternion
+  send(bad);
+  bad = good;
+  bad.pose.pose.position.y += 5000.0;  // a jump of kilometres
+  send(bad);
+  bad = good;
+  bad.header.frame_id = "map";
+  send(bad);
+  bad = good;
+  bad.header.stamp = ros::Time(world->time_ - 50.0);  // backwards in time
+  world->robust_odom_pub_.publish(bad);
+  ros::WallDuration(0.05).sleep();
+  world->advance(5.0);
+  std::lock_guard<std::mutex> lock(world->rec_.mutex);
+  const auto& robust = world->rec_.state["robust"];
+  const auto& base = world->rec_.state["base"];
+  EXPECT_TRUE(allFinite(robust));
+  EXPECT_NEAR(robust.vehicle_depth, base.vehicle_depth, 0.5);  // unharmed: it follows the good odometry
+  EXPECT_NEAR(robust.joints[0].y, 0.0, 1e-6);                   // the kilometre jump never got in
+  bool found = false;
+  for (const auto& kv : world->rec_.diagnostics)
+    if (kv.first.find("robust") != std::string::npos && kv.first.find("rejected messages") != std::string::npos)
+    {
+      std::printf("%s = %s\n", kv.first.c_str(), kv.second.c_str());
+      found = std::atoi(kv.second.c_str()) >= 5;
+    }
+  EXPECT_TRUE(found) << "the robust node's diagnostics do not report the 5 rejected odometry messages";
+}
+
+TEST(TowSimNode, PauseAndResetServicesWork)
+{
+  ros::ServiceClient pause = world->nh_.serviceClient<std_srvs::SetBool>("/base/tow_sim/set_paused");
+  ros::ServiceClient reset = world->nh_.serviceClient<std_srvs::Trigger>("/base/tow_sim/reset");
+  ASSERT_TRUE(pause.waitForExistence(ros::Duration(5.0)));
+  std_srvs::SetBool p;
+  p.request.data = true;
+  ASSERT_TRUE(pause.call(p));
+  EXPECT_TRUE(p.response.success);
+  world->advance(1.0);
+  ros::Time paused_stamp;
+  {
+    std::lock_guard<std::mutex> lock(world->rec_.mutex);
+    paused_stamp = world->rec_.state["base"].header.stamp;
+  }
+  world->advance(2.0);
+  {
+    std::lock_guard<std::mutex> lock(world->rec_.mutex);
+    EXPECT_EQ(world->rec_.state["base"].header.stamp, paused_stamp);  // frozen
+  }
+  p.request.data = false;
+  ASSERT_TRUE(pause.call(p));
+  world->advance(2.0);
+  {
+    std::lock_guard<std::mutex> lock(world->rec_.mutex);
+    EXPECT_GT(world->rec_.state["base"].header.stamp, paused_stamp);  // running again
+  }
+  double depth_before;
+  {
+    std::lock_guard<std::mutex> lock(world->rec_.mutex);
+    depth_before = world->rec_.state["base"].vehicle_depth;
+  }
+  std_srvs::Trigger r;
+  ASSERT_TRUE(reset.call(r));
+  EXPECT_TRUE(r.response.success) << r.response.message;
+  world->advance(0.5);
+  std::lock_guard<std::mutex> lock(world->rec_.mutex);
+  const auto& s = world->rec_.state["base"];
+  EXPECT_TRUE(allFinite(s));
+  // Laid out again as a straight line at 0.5 rad: 100 m of cable and the bail at sin(0.5) of that depth.
+  std::printf("reset: depth %.2f m before, %.2f m after\n", depth_before, s.vehicle_depth);
+  EXPECT_NEAR(s.vehicle_depth, 100.0 * std::sin(0.5), 3.0);
+}
+
+TEST(TowSimNode, BadConfigurationExitsNamingTheParameter)
+{
+  world->nh_.setParam("/bad/tow_sim/cable/length", -1.0);
+  FILE* pipe = popen(TOW_SIM_NODE_BINARY " __ns:=/bad __name:=tow_sim 2>&1", "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string output;
+  char buffer[512];
+  while (fgets(buffer, sizeof(buffer), pipe))
+    output += buffer;
+  const int status = pclose(pipe);
+  EXPECT_NE(status, 0);
+  EXPECT_NE(output.find("/bad/tow_sim/cable/length = -1"), std::string::npos) << output;
+  EXPECT_NE(output.find("(0, 100000] [m]"), std::string::npos) << output;
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "test_tow_sim_node");
+  world = std::make_unique<World>();
+  const int result = RUN_ALL_TESTS();
+  world.reset();
+  return result;
+}
