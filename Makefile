@@ -11,7 +11,10 @@ export PATH := /usr/bin:/bin:$(PATH)
 CATKIN_ARGS := -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3
 JOBS ?= 2
 
-.PHONY: deps workspace build test demo bench clean
+.PHONY: deps workspace build test demo offline-demo screenshot bench clean
+# rviz opens when there is a display; without one the demo runs headless and prints a status line each second.
+RVIZ ?= $(if $(DISPLAY),true,false)
+MANOEUVRE ?= turn
 
 deps:
 	@$(REPO)/scripts/install_deps.sh
@@ -31,7 +34,13 @@ test: build
 	@cd $(WS) && /usr/bin/python3 $(REPO)/scripts/test_summary.py build/test_results
 
 demo: build
+	source $(WS)/devel/setup.bash && roslaunch tow_sim tow_sim.launch rviz:=$(RVIZ) manoeuvre:=$(MANOEUVRE)
+
+offline-demo: build
 	$(WS)/devel/lib/tow_sim/tow_sim_demo
+
+screenshot: build
+	$(REPO)/scripts/rviz_screenshot.sh $(REPO)/docs/rviz_demo.png 40 $(MANOEUVRE)
 
 bench: build
 	@for b in $(WS)/devel/lib/tow_sim/bench_*; do echo "== $$b"; $$b; done
