@@ -13,6 +13,8 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 namespace
 {
@@ -33,10 +35,20 @@ public:
     pnh.param<std::string>("world_frame", world_frame_, "odom");
     pnh.param<std::string>("ship_frame", ship_frame_, "ship");
     pnh.param("heading", heading_, 0.0);
-    const std::string known[] = { "straight", "turn", "zigzag", "speed_change" };
+    pnh.param("waypoint_radius", waypoint_radius_, 30.0);
+    std::vector<double> waypoints;
+    pnh.param("waypoints", waypoints, waypoints);
+    if (waypoints.size() % 2 != 0)
+      throw std::invalid_argument(pnh.resolveName("waypoints") + " must hold x, y pairs [m]: an even count of numbers");
+    for (size_t i = 0; i + 1 < waypoints.size(); i += 2)
+      waypoints_.emplace_back(waypoints[i], waypoints[i + 1]);
+    const std::string known[] = { "straight", "turn", "zigzag", "speed_change", "waypoints" };
     if (std::find(std::begin(known), std::end(known), manoeuvre_) == std::end(known))
       throw std::invalid_argument(pnh.resolveName("manoeuvre") + " = '" + manoeuvre_ +
-                                  "' must be straight, turn, zigzag or speed_change");
+                                  "' must be straight, turn, zigzag, speed_change or waypoints");
+    if (manoeuvre_ == "waypoints" && waypoints_.empty())
+      throw std::invalid_argument(pnh.resolveName("waypoints") + " is empty: the waypoints manoeuvre needs at least "
+                                                                 "one [x, y] pair");
     if (!(std::abs(speed_) <= 15.0 && std::abs(speed_2_) <= 15.0))
       throw std::invalid_argument(pnh.resolveName("speed") + " and speed_2 must be in [-15, 15] [m/s]");
     if (!(std::abs(turn_radius_) >= 10.0 && std::abs(turn_radius_) <= 1e5))
@@ -86,6 +98,19 @@ private:
     else if (manoeuvre_ == "zigzag" && t > turn_start_)
       r_target = (std::fmod(t - turn_start_, zigzag_period_) < 0.5 * zigzag_period_ ? 1.0 : -1.0) * speed_ /
                  std::abs(turn_radius_);
+    else if (manoeuvre_ == "waypoints" && next_waypoint_ < waypoints_.size())
+    {
+      const auto& w = waypoints_[next_waypoint_];
+      if (std::hypot(w.first - x_, w.second - y_) < waypoint_radius_)
+      {
+        ROS_INFO("ship_motion: waypoint %zu reached", next_waypoint_ + 1);
+        ++next_waypoint_;
+      }
+      const double wanted = std::atan2(w.second - y_, w.first - x_);
+      const double error = std::atan2(std::sin(wanted - heading_), std::cos(wanted - heading_));
+      const double r_max = std::abs(speed_ / turn_radius_);
+      r_target = std::clamp(error / 20.0, -r_max, r_max);
+    }
     else if (manoeuvre_ == "speed_change" && t > change_time_)
       u_target = speed_ + (speed_2_ - speed_) * std::min(1.0, (t - change_time_) / change_duration_);
     // Smooth: speed slews at most 0.1 m/s^2, yaw rate follows with a 5 s lag.
@@ -119,6 +144,9 @@ private:
 
   std::string manoeuvre_, world_frame_, ship_frame_;
   double speed_, speed_2_, change_time_, change_duration_, turn_radius_, turn_start_, zigzag_period_, rate_;
+  std::vector<std::pair<double, double>> waypoints_;
+  size_t next_waypoint_ = 0;
+  double waypoint_radius_ = 30.0;
   double x_ = 0.0, y_ = 0.0, heading_ = 0.0, u_ = 0.0, r_ = 0.0, cmd_u_ = 0.0, cmd_r_ = 0.0;
   ros::Time start_, last_, last_cmd_;
   ros::Publisher odom_pub_;
