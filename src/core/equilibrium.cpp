@@ -1,0 +1,179 @@
+#include "tow_sim/core/equilibrium.h"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace tow_sim
+{
+namespace
+{
+constexpr int kMaxIterations = 60;
+
+// The element's loads with its aft joint at the origin, axis s, both joints moving at u.
+struct Balance
+{
+  const ChainModel& model;
+  int element;
+  double t;
+  Eigen::Vector3d u;
+  Eigen::Vector3d T_aft;  // tension at the aft joint (0 below the vehicle)
+
+  // Moment about the CG of everything on the element, given that the force balance fixes
+  // T_fwd = T_aft - F: M - l s x (T_aft - gamma F). Also returns T_fwd.
+  Eigen::Vector3d residual(const Eigen::Vector3d& s, Eigen::Vector3d* T_fwd = nullptr) const
+  {
+    const double l = model.elementLength(element);
+    const ElementKinematics k = ElementKinematics::fromJoints(-l * s, Eigen::Vector3d::Zero(), u, u);
+    BodyDynamics body;
+    model.elementDynamics(element, t, k, body);
+    const Eigen::Vector3d F = body.wrench.head<3>(), M = body.wrench.tail<3>();
+    if (T_fwd)
+      *T_fwd = T_aft - F;
+    return M - l * k.s.cross(T_aft - body.cg_fraction * F);
+  }
+};
+
+Eigen::Matrix<double, 3, 2> tangentBasis(const Eigen::Vector3d& s)
+{
+  Eigen::Matrix<double, 3, 2> B;
+  const Eigen::Vector3d e1 = s.unitOrthogonal();
+  B << e1, s.cross(e1);
+  return B;
+}
+
+// Moment residual on the two axes normal to s, and its Jacobian over small rotations of s about them.
+void linearise(const Balance& b, const Eigen::Vector3d& s, Eigen::Vector2d& r, Eigen::Matrix2d& J)
+{
+  const Eigen::Matrix<double, 3, 2> B = tangentBasis(s);
+  r = B.transpose() * b.residual(s);
+  const double h = 1e-7;
+  for (int j = 0; j < 2; ++j)
+  {
+    const Eigen::Vector3d axis = B.col(j);
+    const Eigen::Vector3d sp = Eigen::AngleAxisd(h, axis) * s, sm = Eigen::AngleAxisd(-h, axis) * s;
+    // Project the moments of the rotated states on the same axes (they stay normal to s to first order).
+    J.col(j) = B.transpose() * (b.residual(sp) - b.residual(sm)) / (2.0 * h);
+  }
+}
+
+// Newton on the unit sphere from s0; returns false if it does not converge.
+bool solveDirection(const Balance& b, Eigen::Vector3d& s, int& iterations, double& residual, double scale)
+{
+  for (int it = 0; it < kMaxIterations; ++it, ++iterations)
+  {
+    Eigen::Vector2d r;
+    Eigen::Matrix2d J;
+    linearise(b, s, r, J);
+    residual = r.norm();
+    if (residual <= 1e-10 * scale)
+      return true;
+    const Eigen::FullPivLU<Eigen::Matrix2d> lu(J);
+    if (!lu.isInvertible())
+      return false;
+    Eigen::Vector2d step = -lu.solve(r);
+    const double max_step = 0.5;  // [rad]
+    if (step.norm() > max_step)
+      step *= max_step / step.norm();
+    const Eigen::Matrix<double, 3, 2> B = tangentBasis(s);
+    // Halve the step while the residual grows.
+    double alpha = 1.0;
+    for (int halving = 0; halving < 20; ++halving, alpha *= 0.5)
+    {
+      const Eigen::Vector3d rotation = B * (alpha * step);
+      const Eigen::Vector3d trial = (Eigen::AngleAxisd(rotation.norm(), rotation.normalized()) * s).normalized();
+      const Eigen::Vector2d r_trial = tangentBasis(trial).transpose() * b.residual(trial);
+      if (r_trial.norm() < residual || halving == 19)
+      {
+        s = trial;
+        break;
+      }
+    }
+  }
+  return false;
+}
+
+// A balanced direction is stable when turning the element raises a moment that turns it back.
+bool isStable(const Balance& b, const Eigen::Vector3d& s)
+{
+  Eigen::Vector2d r;
+  Eigen::Matrix2d J;
+  linearise(b, s, r, J);
+  // Rotating s by phi about axis n changes the moment about n by J phi; restoring means the symmetric
+  // part is negative (semi-)definite. The moment of a rotation about e1 acts about e1: compare on the
+  // rotation axes, which for s' = R(phi n) s is the same basis.
+  const Eigen::Matrix2d S = 0.5 * (J + J.transpose());
+  return Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(S).eigenvalues().maxCoeff() <= 1e-9 * (1.0 + S.norm());
+}
+}  // namespace
+
+EquilibriumResult steadyTowEquilibrium(const ChainModel& model, double t, const Eigen::Vector3d& tow_point_W,
+                                       const Eigen::Vector3d& ship_velocity_W)
+{
+  if (!tow_point_W.allFinite() || !ship_velocity_W.allFinite())
+    throw std::runtime_error("equilibrium: tow point and ship velocity must be finite");
+  const int n = model.elementCount();
+  EquilibriumResult result;
+  result.tensions.resize(3, n);
+  Eigen::Matrix3Xd axes(3, n);
+  // The first guess for the vehicle: trailing the flow past it, slightly down.
+  const Eigen::Vector3d flow = ship_velocity_W - model.environment().current_W;
+  Eigen::Vector3d guess = flow.norm() > 1e-6 ? Eigen::Vector3d(-flow.normalized()) : Eigen::Vector3d(-Eigen::Vector3d::UnitZ());
+  guess = (guess - 0.2 * Eigen::Vector3d::UnitZ()).normalized();
+  Eigen::Vector3d T_aft = Eigen::Vector3d::Zero();
+  for (int e = n - 1; e >= 0; --e)
+  {
+    const Balance b{ model, e, t, ship_velocity_W, T_aft };
+    Eigen::Vector3d F_guess;
+    b.residual(guess, &F_guess);
+    const double scale = 1.0 + model.elementLength(e) * (T_aft.norm() + F_guess.norm());
+    // Candidates: the guess, the guess tipped, and the reversed guess; the first stable balance wins.
+    const Eigen::Vector3d candidates[] = { guess, (guess - 0.5 * Eigen::Vector3d::UnitZ()).normalized(),
+                                           (Eigen::AngleAxisd(0.3, guess.unitOrthogonal()) * guess).normalized(),
+                                           -guess };
+    bool found = false;
+    double residual = 0.0;
+    Eigen::Vector3d s;
+    for (const Eigen::Vector3d& start : candidates)
+    {
+      s = start;
+      if (solveDirection(b, s, result.iterations, residual, scale) && isStable(b, s))
+      {
+        found = true;
+        break;
+      }
+    }
+    if (!found)
+    {
+      std::ostringstream os;
+      os << "equilibrium: no stable direction balances element " << e + 1 << " of " << n
+         << (e == n - 1 ? " (the vehicle)" : "") << " at ship velocity (" << ship_velocity_W.transpose()
+         << ") m/s and current (" << model.environment().current_W.transpose() << ") m/s; moment residual "
+         << residual << " N m";
+      throw std::runtime_error(os.str());
+    }
+    result.largest_residual = std::max(result.largest_residual, residual);
+    axes.col(e) = s;
+    Eigen::Vector3d T_fwd;
+    b.residual(s, &T_fwd);
+    result.tensions.col(e) = T_fwd;
+    T_aft = T_fwd;
+    guess = s;
+  }
+  // Hang the shape from the tow point.
+  result.state.x.resize(3, n);
+  result.state.v.resize(3, n);
+  Eigen::Vector3d p = tow_point_W;
+  for (int e = 0; e < n; ++e)
+  {
+    p += model.elementLength(e) * axes.col(e);
+    result.state.x.col(e) = p;
+    result.state.v.col(e) = ship_velocity_W;
+  }
+  return result;
+}
+
+}  // namespace tow_sim
