@@ -8,6 +8,7 @@
 
 #include "tow_sim/CableState.h"
 #include "tow_sim/FinLoads.h"
+#include "tow_sim/core/equilibrium.h"
 #include "tow_sim/ros/conversions.h"
 #include "tow_sim/ros/markers.h"
 
@@ -68,9 +69,9 @@ NodeParams readNodeParams(const ros::NodeHandle& pnh)
   p.max_extrapolation = readDouble(pnh, "max_extrapolation", p.max_extrapolation, 0.0, 60.0, "[s]");
   p.max_ship_speed = readDouble(pnh, "max_ship_speed", p.max_ship_speed, 0.0, 1000.0, "[m/s]", true);
   p.initial_shape = readString(pnh, "initial_shape", p.initial_shape);
-  if (p.initial_shape != "line" && p.initial_shape != "hanging")
+  if (p.initial_shape != "equilibrium" && p.initial_shape != "line" && p.initial_shape != "hanging")
     throw std::invalid_argument(pnh.resolveName("initial_shape") + " = '" + p.initial_shape +
-                                "' must be 'line' or 'hanging'");
+                                "' must be 'equilibrium', 'line' or 'hanging'");
   p.initial_angle = readDouble(pnh, "initial_angle", p.initial_angle, 0.0, M_PI / 2, "[rad]");
   p.tension_color_max = readDouble(pnh, "tension_color_max", p.tension_color_max, 0.0, 1e9, "[N]", true);
   p.force_arrow_scale = readDouble(pnh, "force_arrow_scale", p.force_arrow_scale, 0.0, 10.0, "[m/N]", true);
@@ -145,14 +146,28 @@ TowSimNode::TowSimNode(ros::NodeHandle nh, ros::NodeHandle pnh)
 void TowSimNode::start(double t)
 {
   const ShipEndState ship = track_(t);
-  Eigen::Vector3d heading(track_direction_.x(), track_direction_.y(), 0.0);
+  const Eigen::Vector3d heading(track_direction_.x(), track_direction_.y(), 0.0);
   Eigen::Vector3d direction = -Eigen::Vector3d::UnitZ();
-  if (params_.initial_shape == "line")
+  if (params_.initial_shape != "hanging")
     direction = -std::cos(params_.initial_angle) * heading - std::sin(params_.initial_angle) * Eigen::Vector3d::UnitZ();
   if (!sim_)
     sim_ = std::make_unique<Simulator>(model_, [this](double time) { return track_(time); });
-  sim_->reset(t, straightChain(*model_, ship.p_W, direction, ship.v_W));
   vehicle_->resetActuators(t);
+  if (params_.initial_shape == "equilibrium")
+  {
+    try
+    {
+      sim_->reset(t, steadyTowEquilibrium(*model_, t, ship.p_W, ship.v_W).state);
+      started_ = true;
+      attitude_.reset();
+      return;
+    }
+    catch (const std::runtime_error& e)
+    {
+      ROS_WARN("tow_sim: %s; starting from a straight line instead", e.what());
+    }
+  }
+  sim_->reset(t, straightChain(*model_, ship.p_W, direction, ship.v_W));
   attitude_.reset();
   started_ = true;
 }
@@ -209,7 +224,8 @@ void TowSimNode::onOdometry(const nav_msgs::Odometry::ConstPtr& msg)
   if (!started_)
   {
     start(t);
-    ROS_INFO("tow_sim: first ship odometry received, cable laid out (%s) at the tow point", params_.initial_shape.c_str());
+    ROS_INFO("tow_sim: first ship odometry received; cable laid out (%s) from the tow point",
+             params_.initial_shape.c_str());
   }
 }
 
@@ -259,7 +275,7 @@ bool TowSimNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Respons
   }
   start(started_ ? sim_->time() : track_.newestTime());
   res.success = true;
-  res.message = "restarted from the initial shape at the current ship pose";
+  res.message = "restarted from the initial shape (" + params_.initial_shape + ") at the current ship pose";
   return true;
 }
 

@@ -34,7 +34,9 @@ struct NodeParams
   double odom_delay = 0.2;                // [s] the simulation runs this far behind the clock, [0, 10]
   double max_extrapolation = 1.0;         // [s] past the newest odometry, then hold, [0, 60]
   double max_ship_speed = 25.0;           // [m/s] odometry implying a faster jump is rejected, (0, 1000]
-  std::string initial_shape = "line";     // line: straight astern at initial_angle; hanging: straight down
+  std::string initial_shape = "equilibrium";  // equilibrium: steady tow at the ship's velocity (falls back to
+                                              // line if none is found); line: straight astern at
+                                              // initial_angle; hanging: straight down
   double initial_angle = 0.5;             // [rad] below the horizontal for "line", [0, pi/2]
   double tension_color_max = 5000.0;      // [N] red end of the cable colour scale, (0, 1e9]
   double force_arrow_scale = 0.01;        // [m/N] length of the tow-force arrow per newton, (0, 10]
