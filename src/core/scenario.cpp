@@ -1,0 +1,341 @@
+#include "tow_sim/core/scenario.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "yaml_section.h"
+
+namespace tow_sim
+{
+namespace
+{
+using detail::fail;
+using detail::Section;
+constexpr double kPi = 3.14159265358979323846;
+
+const char* typeName(Manoeuvre::Type t)
+{
+  switch (t)
+  {
+    case Manoeuvre::Type::kStraight:
+      return "straight";
+    case Manoeuvre::Type::kSpeedChange:
+      return "speed_change";
+    case Manoeuvre::Type::kTurn:
+      return "turn";
+    case Manoeuvre::Type::kZigzag:
+      return "zigzag";
+    case Manoeuvre::Type::kWaypoints:
+      return "waypoints";
+  }
+  return "straight";
+}
+
+Manoeuvre readManoeuvre(Section s, double previous_speed)
+{
+  Manoeuvre m;
+  m.speed = previous_speed;
+  const std::string type = s.text("type", "straight");
+  const Manoeuvre::Type types[] = { Manoeuvre::Type::kStraight, Manoeuvre::Type::kSpeedChange, Manoeuvre::Type::kTurn,
+                                    Manoeuvre::Type::kZigzag, Manoeuvre::Type::kWaypoints };
+  bool known = false;
+  for (Manoeuvre::Type t : types)
+    if (type == typeName(t))
+    {
+      m.type = t;
+      known = true;
+    }
+  if (!known)
+    fail(s.path("type"), "= '" + type + "' must be straight, speed_change, turn, zigzag or waypoints");
+  s.read("speed", m.speed);
+  s.read("duration", m.duration);
+  s.read("to_speed", m.to_speed);
+  s.read("radius", m.radius);
+  s.read("angle", m.angle);
+  std::string direction = s.text("direction", "port");
+  if (direction != "port" && direction != "starboard")
+    fail(s.path("direction"), "= '" + direction + "' must be port or starboard");
+  m.direction = direction == "port" ? 1 : -1;
+  s.read("legs", m.legs);
+  s.read("acceptance", m.acceptance);
+  const std::vector<double> points = s.list("points");
+  if (points.size() % 2 != 0)
+    fail(s.path("points"), "must hold x, y pairs [m]: an even count of numbers");
+  for (size_t i = 0; i + 1 < points.size(); i += 2)
+    m.points.emplace_back(points[i], points[i + 1]);
+  s.finish();
+  requireInRange(s.path("speed"), m.speed, -15.0, 15.0, "[m/s]");
+  requireInRange(s.path("duration"), m.duration, 0.0, 1e6, "[s]", true);
+  requireInRange(s.path("to_speed"), m.to_speed, -15.0, 15.0, "[m/s]");
+  requireInRange(s.path("radius"), m.radius, 10.0, 1e5, "[m]");
+  requireInRange(s.path("angle"), m.angle, 0.0, 100.0, "[rad]", true);
+  requireInRange(s.path("legs"), m.legs, 1.0, 1000.0, "[-]");
+  requireInRange(s.path("acceptance"), m.acceptance, 1.0, 1e4, "[m]");
+  if (m.type == Manoeuvre::Type::kWaypoints && m.points.empty())
+    fail(s.path("points"), "the waypoints manoeuvre needs at least one [x, y] pair");
+  return m;
+}
+}  // namespace
+
+Scenario loadScenario(const YAML::Node& root)
+{
+  Scenario sc;
+  sc.config = loadConfig(root);
+  Section top(root, "scenario");
+  for (const char* section : { "cable", "vehicle", "environment", "numerics" })
+    top.has(section);
+
+  Section ship = top.child("ship");
+  ship.read("tow_point", sc.tow_point_S);
+  std::vector<double> start = ship.list("start_position");
+  if (!start.empty())
+  {
+    if (start.size() != 2)
+      fail(ship.path("start_position"), "must be [x, y] [m]");
+    sc.start_position = Eigen::Vector2d(start[0], start[1]);
+  }
+  ship.read("start_heading", sc.start_heading);
+  double speed = 2.0;
+  for (Section m : ship.items("manoeuvres"))
+  {
+    sc.manoeuvres.push_back(readManoeuvre(m, speed));
+    const Manoeuvre& last = sc.manoeuvres.back();
+    speed = last.type == Manoeuvre::Type::kSpeedChange ? last.to_speed : last.speed;
+  }
+  ship.finish();
+  for (int i = 0; i < 3; ++i)
+    requireInRange(ship.path("tow_point") + "[" + std::to_string(i) + "]", sc.tow_point_S[i], -1000.0, 1000.0, "[m]");
+  requireInRange(ship.path("start_heading"), sc.start_heading, -100.0, 100.0, "[rad]");
+  if (sc.manoeuvres.empty())
+    sc.manoeuvres.push_back(Manoeuvre());
+
+  for (Section c : top.items("commands"))
+  {
+    CommandEvent e;
+    c.read("t", e.t);
+    c.read("rudder", e.rudder);
+    c.read("elevator", e.elevator);
+    c.read("thrust", e.thrust);
+    c.finish();
+    requireInRange(c.path("t"), e.t, 0.0, 1e7, "[s]");
+    requireInRange(c.path("rudder"), e.rudder, -kPi / 2, kPi / 2, "[rad]");
+    requireInRange(c.path("elevator"), e.elevator, -kPi / 2, kPi / 2, "[rad]");
+    requireInRange(c.path("thrust"), e.thrust, -1e6, 1e6, "[N]");
+    sc.commands.push_back(e);
+  }
+  std::stable_sort(sc.commands.begin(), sc.commands.end(),
+                   [](const CommandEvent& a, const CommandEvent& b) { return a.t < b.t; });
+
+  if (top.has("initial_state"))
+  {
+    Section init = top.child("initial_state");
+    const std::string type = init.text("type", "equilibrium");
+    if (type == "equilibrium")
+      sc.start = Scenario::Start::kEquilibrium;
+    else if (type == "line")
+      sc.start = Scenario::Start::kLine;
+    else if (type == "points")
+      sc.start = Scenario::Start::kPoints;
+    else
+      fail(init.path("type"), "= '" + type + "' must be equilibrium, line or points");
+    init.read("direction", sc.line_direction_S);
+    const std::vector<double> p = init.list("points");
+    init.finish();
+    if (sc.line_direction_S.norm() < 1e-9 || !sc.line_direction_S.allFinite())
+      fail(init.path("direction"), "must be a finite, non-zero [x, y, z] in the ship frame");
+    const size_t joints = static_cast<size_t>(sc.config.cable.segments) + 1;
+    if (sc.start == Scenario::Start::kPoints)
+    {
+      if (p.size() != 3 * joints)
+        fail(init.path("points"), "must hold 3 (nu + 1) = " + std::to_string(3 * joints) +
+                                      " numbers (joints x_2 .. x_{nu+2}, world, x y z each); got " +
+                                      std::to_string(p.size()));
+      sc.points = Eigen::Map<const Eigen::Matrix3Xd>(p.data(), 3, static_cast<Eigen::Index>(joints));
+    }
+  }
+
+  Section sim = top.child("simulation");
+  sim.read("duration", sc.duration);
+  sim.read("output_interval", sc.output_interval);
+  sim.read("shape_interval", sc.shape_interval);
+  sim.finish();
+  requireInRange(sim.path("duration"), sc.duration, 0.0, 1e7, "[s]", true);
+  requireInRange(sim.path("output_interval"), sc.output_interval, 1e-3, 1e5, "[s]");
+  requireInRange(sim.path("shape_interval"), sc.shape_interval, 1e-3, 1e7, "[s]");
+  top.finish();
+  return sc;
+}
+
+Scenario loadScenarioFile(const std::string& path)
+{
+  YAML::Node root;
+  try
+  {
+    root = YAML::LoadFile(path);
+  }
+  catch (const YAML::Exception& e)
+  {
+    throw std::invalid_argument(path + ": cannot read the scenario: " + e.what());
+  }
+  return loadScenario(root);
+}
+
+YAML::Node toYaml(const Scenario& sc)
+{
+  YAML::Node root = toYaml(sc.config);
+  YAML::Node ship = root["ship"];
+  ship["tow_point"] = std::vector<double>{ sc.tow_point_S.x(), sc.tow_point_S.y(), sc.tow_point_S.z() };
+  ship["start_position"] = std::vector<double>{ sc.start_position.x(), sc.start_position.y() };
+  ship["start_heading"] = sc.start_heading;
+  for (const Manoeuvre& m : sc.manoeuvres)
+  {
+    YAML::Node n;
+    n["type"] = typeName(m.type);
+    n["speed"] = m.speed;
+    n["duration"] = m.duration;
+    n["to_speed"] = m.to_speed;
+    n["radius"] = m.radius;
+    n["angle"] = m.angle;
+    n["direction"] = m.direction > 0 ? "port" : "starboard";
+    n["legs"] = m.legs;
+    n["acceptance"] = m.acceptance;
+    std::vector<double> points;
+    for (const Eigen::Vector2d& p : m.points)
+    {
+      points.push_back(p.x());
+      points.push_back(p.y());
+    }
+    n["points"] = points;
+    ship["manoeuvres"].push_back(n);
+  }
+  for (const CommandEvent& e : sc.commands)
+  {
+    YAML::Node n;
+    n["t"] = e.t;
+    n["rudder"] = e.rudder;
+    n["elevator"] = e.elevator;
+    n["thrust"] = e.thrust;
+    root["commands"].push_back(n);
+  }
+  YAML::Node init = root["initial_state"];
+  init["type"] = sc.start == Scenario::Start::kEquilibrium ? "equilibrium"
+                 : sc.start == Scenario::Start::kLine      ? "line"
+                                                           : "points";
+  init["direction"] = std::vector<double>{ sc.line_direction_S.x(), sc.line_direction_S.y(), sc.line_direction_S.z() };
+  if (sc.start == Scenario::Start::kPoints)
+    init["points"] = std::vector<double>(sc.points.data(), sc.points.data() + sc.points.size());
+  root["simulation"]["duration"] = sc.duration;
+  root["simulation"]["output_interval"] = sc.output_interval;
+  root["simulation"]["shape_interval"] = sc.shape_interval;
+  return root;
+}
+
+Eigen::Vector3d ShipPath::poseAt(double time) const
+{
+  if (t.empty())
+    return Eigen::Vector3d::Zero();
+  const auto upper = std::upper_bound(t.begin(), t.end(), time);
+  if (upper == t.begin())
+    return pose.front();
+  if (upper == t.end())
+    return pose.back();
+  const size_t i = static_cast<size_t>(upper - t.begin());
+  const double w = (time - t[i - 1]) / (t[i] - t[i - 1]);
+  return (1.0 - w) * pose[i - 1] + w * pose[i];
+}
+
+double ShipPath::speedAt(double time) const
+{
+  if (t.empty())
+    return 0.0;
+  const auto upper = std::upper_bound(t.begin(), t.end(), time);
+  const size_t i = std::min(static_cast<size_t>(upper - t.begin()), t.size() - 1);
+  return speed[i];
+}
+
+ShipPath buildShipPath(const Scenario& sc, double dt)
+{
+  const size_t samples = static_cast<size_t>(sc.duration / dt) + 40;
+  ShipPath path{ ShipTrack(1.0, samples + 10), {}, {}, {} };
+  double x = sc.start_position.x(), y = sc.start_position.y(), heading = sc.start_heading;
+  double u = sc.manoeuvres.front().speed, r = 0.0, time = 0.0;
+  size_t index = 0;                 // current manoeuvre
+  double started = 0.0;             // when it started
+  double heading0 = heading;        // heading when it started
+  double speed0 = u;                // speed when it started
+  int leg = 0;                      // zigzag leg / waypoint index
+  auto advanceManoeuvre = [&]() {
+    ++index;
+    started = time;
+    heading0 = heading;
+    speed0 = u;
+    leg = 0;
+  };
+  for (size_t k = 0; k < samples; ++k)
+  {
+    double u_target = u, r_target = 0.0;
+    if (index < sc.manoeuvres.size())
+    {
+      const Manoeuvre& m = sc.manoeuvres[index];
+      const double elapsed = time - started;
+      const double turn_rate = std::abs(m.speed) / m.radius;
+      switch (m.type)
+      {
+        case Manoeuvre::Type::kStraight:
+          u_target = m.speed;
+          if (elapsed >= m.duration)
+            advanceManoeuvre();
+          break;
+        case Manoeuvre::Type::kSpeedChange:
+          u_target = speed0 + (m.to_speed - speed0) * std::min(1.0, elapsed / m.duration);
+          if (elapsed >= m.duration)
+            advanceManoeuvre();
+          break;
+        case Manoeuvre::Type::kTurn:
+          u_target = m.speed;
+          r_target = m.direction * turn_rate;
+          if (std::abs(heading - heading0) >= m.angle)
+            advanceManoeuvre();
+          break;
+        case Manoeuvre::Type::kZigzag:
+        {
+          u_target = m.speed;
+          const double side = (leg % 2 == 0 ? 1.0 : -1.0) * m.direction;
+          r_target = side * turn_rate;
+          if (side * (heading - heading0) >= m.angle && ++leg >= m.legs)
+            advanceManoeuvre();
+          break;
+        }
+        case Manoeuvre::Type::kWaypoints:
+        {
+          u_target = m.speed;
+          const Eigen::Vector2d& w = m.points[static_cast<size_t>(leg)];
+          const double wanted = std::atan2(w.y() - y, w.x() - x);
+          const double error = std::atan2(std::sin(wanted - heading), std::cos(wanted - heading));
+          r_target = std::clamp(error / 20.0, -turn_rate, turn_rate);
+          if (std::hypot(w.x() - x, w.y() - y) < m.acceptance && ++leg >= static_cast<int>(m.points.size()))
+            advanceManoeuvre();
+          break;
+        }
+      }
+    }
+    // Store this sample, then integrate to the next one.
+    const Eigen::Matrix3d R = Eigen::AngleAxisd(heading, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    const Eigen::Vector3d v_ship = R * Eigen::Vector3d(u, 0.0, 0.0);
+    const Eigen::Vector3d w_ship(0.0, 0.0, r);
+    path.tow_point.add(time, Eigen::Vector3d(x, y, 0.0) + R * sc.tow_point_S, v_ship + w_ship.cross(R * sc.tow_point_S));
+    path.t.push_back(time);
+    path.pose.emplace_back(x, y, heading);
+    path.speed.push_back(u);
+    u += std::clamp(u_target - u, -0.1 * dt, 0.1 * dt);
+    r += (r_target - r) * std::min(1.0, dt / 2.0);
+    heading += r * dt;
+    x += u * std::cos(heading) * dt;
+    y += u * std::sin(heading) * dt;
+    time += dt;
+  }
+  return path;
+}
+
+}  // namespace tow_sim
