@@ -11,7 +11,13 @@ export PATH := /usr/bin:/bin:$(PATH)
 CATKIN_ARGS := -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3
 JOBS ?= 2
 
-.PHONY: deps workspace build test demo offline-demo screenshot bench clean
+.PHONY: deps workspace build test sanitize fuzz demo offline-demo screenshot bench clean
+SAN_DIR := $(WS)/sanitize
+SAN_FLAGS := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all
+FUZZ_DIR := $(WS)/fuzz
+FUZZ_SECONDS ?= 30
+export ASAN_OPTIONS := detect_leaks=1:halt_on_error=1:abort_on_error=1
+export UBSAN_OPTIONS := halt_on_error=1:print_stacktrace=1
 # rviz opens when there is a display; without one the demo runs headless and prints a status line each second.
 RVIZ ?= $(if $(DISPLAY),true,false)
 MANOEUVRE ?= turn
@@ -30,8 +36,42 @@ test: build
 	cd $(WS) && rm -rf build/test_results && catkin_make $(CATKIN_ARGS) -j$(JOBS) tests
 	cd $(WS) && source devel/setup.bash && catkin_make $(CATKIN_ARGS) -j1 run_tests > $(WS)/run_tests.log 2>&1 \
 	  || { tail -n 60 $(WS)/run_tests.log; echo "catkin_make run_tests failed (log: $(WS)/run_tests.log)"; }
-	@grep -E '^(\[  (PASSED|FAILED) |\[==========\] [0-9]+ tests? from .* ran)|critical angle|energy drift|mode [0-9]:|length error|trim at|after 60 s|yawed|pitched|incidence|CB [0-9]' $(WS)/run_tests.log || true
-	@cd $(WS) && /usr/bin/python3 $(REPO)/scripts/test_summary.py build/test_results
+	@grep -E '^(\[  (PASSED|FAILED) |\[==========\] [0-9]+ tests? from .* ran)|critical angle|energy drift|mode [0-9]:|length error|trim at|after 60 s|yawed|pitched|incidence|CB [0-9]|equilibrium|rviz screenshot' $(WS)/run_tests.log || true
+	@$(MAKE) --no-print-directory sanitize || { mkdir -p $(SAN_DIR)/test_results; ls $(SAN_DIR)/test_results/*.xml >/dev/null 2>&1 \
+	  || echo '<testsuite name="sanitizers"><testcase classname="sanitizers" name="build_and_run"><failure message="make sanitize failed before any test ran"/></testcase></testsuite>' \
+	  > $(SAN_DIR)/test_results/sanitize_failed.xml; }
+	@/usr/bin/python3 $(REPO)/scripts/test_summary.py $(WS)/build/test_results $(SAN_DIR)/test_results
+
+# The core tests again, built with AddressSanitizer and UndefinedBehaviorSanitizer (plain CMake, no
+# catkin); any report fails its test. Sanitized code runs ~30x slower, so the long physics runs (the
+# 100 s energy and 1000 s length-drift runs, the batch scenarios) are left to the normal build; every
+# other test runs. Results: $(SAN_DIR)/test_results/ctest_sanitizers.xml.
+SAN_SKIP := -Vacuum.ReleasedChainKeepsItsEnergy:Water.SegmentLengthsHoldThroughAThousandSecondsOfTurns
+sanitize: deps
+	@echo "== core tests under AddressSanitizer + UndefinedBehaviorSanitizer"
+	@rm -rf $(SAN_DIR)/test_results && mkdir -p $(SAN_DIR)/test_results
+	cmake -S $(REPO) -B $(SAN_DIR) -DTOW_SIM_CORE_ONLY=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	  "-DCMAKE_CXX_FLAGS=$(SAN_FLAGS)" "-DCMAKE_EXE_LINKER_FLAGS=$(SAN_FLAGS)" > $(SAN_DIR).configure.log
+	cmake --build $(SAN_DIR) -j$(JOBS) > $(SAN_DIR).build.log 2>&1 || { tail -n 40 $(SAN_DIR).build.log; exit 1; }
+	cd $(SAN_DIR) && GTEST_FILTER=$(SAN_SKIP) ctest -j$(JOBS) -E '^test_batch$$' --output-on-failure --output-junit $(SAN_DIR)/test_results/ctest_sanitizers.xml \
+	  > $(SAN_DIR).ctest.log 2>&1 || { tail -n 80 $(SAN_DIR).ctest.log; exit 1; }
+	@tail -n 3 $(SAN_DIR).ctest.log
+
+# libFuzzer (clang) on the configuration/scenario loader and on odometry and fin-command handling,
+# FUZZ_SECONDS each, from the seed corpus in fuzz/corpus; fails on any crash or sanitizer report.
+fuzz: deps
+	cmake -S $(REPO) -B $(FUZZ_DIR) -DTOW_SIM_CORE_ONLY=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	  -DCMAKE_CXX_COMPILER=clang++ "-DCMAKE_CXX_FLAGS=$(SAN_FLAGS)" > $(FUZZ_DIR).configure.log
+	cmake --build $(FUZZ_DIR) -j$(JOBS) --target fuzz_config_loader fuzz_odometry > $(FUZZ_DIR).build.log 2>&1 \
+	  || { tail -n 40 $(FUZZ_DIR).build.log; exit 1; }
+	@for f in config_loader odometry; do \
+	  mkdir -p $(FUZZ_DIR)/corpus_$$f && \
+	  echo "== fuzzing $$f for $(FUZZ_SECONDS) s" && \
+	  $(FUZZ_DIR)/fuzz_$$f -max_total_time=$(FUZZ_SECONDS) -print_final_stats=1 -artifact_prefix=$(FUZZ_DIR)/ \
+	    $(FUZZ_DIR)/corpus_$$f $(REPO)/fuzz/corpus/$$f > $(FUZZ_DIR)/$$f.log 2>&1 \
+	    || { tail -n 40 $(FUZZ_DIR)/$$f.log; echo "fuzz_$$f found a crash: see $(FUZZ_DIR)"; exit 1; }; \
+	  grep -E "stat::number_of_executed_units|Done" $(FUZZ_DIR)/$$f.log | head -2; \
+	done
 
 demo: build
 	source $(WS)/devel/setup.bash && roslaunch tow_sim tow_sim.launch rviz:=$(RVIZ) manoeuvre:=$(MANOEUVRE)

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Counts the test cases in the JUnit XML files under a catkin test_results folder.
+"""Counts the test cases in the JUnit XML files under test_results folders (catkin's and CTest's).
 
 Prints the per-file failures, then one last line `N passed, N failed[, N skipped]`. Exits 1 when a
 test failed or errored, when a result file is unreadable, or when no test ran at all.
@@ -9,10 +9,11 @@ import sys
 import xml.etree.ElementTree as ET
 
 
-def main(folder: str) -> int:
+def main(folders) -> int:
     passed = failed = skipped = 0
     problems = []
-    files = sorted(pathlib.Path(folder).rglob("*.xml"))
+    files = sorted(f for folder in folders for f in pathlib.Path(folder).rglob("*.xml"))
+    folder = ", ".join(folders)
     for path in files:
         try:
             root = ET.parse(path).getroot()
@@ -43,4 +44,4 @@ def main(folder: str) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main(sys.argv[1] if len(sys.argv) > 1 else "build/test_results"))
+    sys.exit(main(sys.argv[1:] or ["build/test_results"]))

@@ -184,7 +184,21 @@ YAML::Node finsYaml(const FinPairParams& f)
 }
 }  // namespace
 
+SimulationConfig loadConfigUnguarded(const YAML::Node& root, const std::string& prefix);
+
 SimulationConfig loadConfig(const YAML::Node& root, const std::string& prefix)
+{
+  try
+  {
+    return loadConfigUnguarded(root, prefix);
+  }
+  catch (const YAML::Exception& e)  // a shape the checks above did not foresee: still a clear refusal
+  {
+    throw std::invalid_argument((prefix.empty() ? std::string("configuration") : prefix) + ": " + e.what());
+  }
+}
+
+SimulationConfig loadConfigUnguarded(const YAML::Node& root, const std::string& prefix)
 {
   SimulationConfig c;
   if (root && !root.IsNull() && !root.IsMap())

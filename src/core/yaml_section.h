@@ -126,6 +126,8 @@ public:
       return;
     for (const auto& entry : node_)
     {
+      if (!entry.first.IsScalar())
+        fail(path_, "has a key that is not a plain name (a list or mapping used as a key)");
       const std::string key = entry.first.as<std::string>();
       if (known_.count(key))
         continue;

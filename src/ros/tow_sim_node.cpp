@@ -9,6 +9,7 @@
 #include "tow_sim/CableState.h"
 #include "tow_sim/FinLoads.h"
 #include "tow_sim/core/equilibrium.h"
+#include "tow_sim/core/odometry_check.h"
 #include "tow_sim/ros/conversions.h"
 #include "tow_sim/ros/markers.h"
 
@@ -97,16 +98,14 @@ SimulationConfig readConfig(const ros::NodeHandle& pnh)
   }
 }
 
-bool finite(const geometry_msgs::Point& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
-bool finite(const geometry_msgs::Vector3& p)
-{
-  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
-}
 }  // namespace
 
 TowSimNode::TowSimNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   : nh_(nh), pnh_(pnh), params_(readNodeParams(pnh)), config_(readConfig(pnh)), track_(params_.max_extrapolation)
 {
+  odometry_limits_.world_frame = params_.world_frame;
+  odometry_limits_.tow_point_S = params_.tow_point_S;
+  odometry_limits_.max_ship_speed = params_.max_ship_speed;
   vehicle_ = std::make_shared<Vehicle>(config_.vehicle, config_.numerics);
   model_ = std::make_shared<ChainModel>(config_.cable, vehicle_, config_.environment, config_.numerics);
   diagnostics_.setHardwareID("tow_sim");
@@ -174,56 +173,35 @@ void TowSimNode::start(double t)
 
 void TowSimNode::onOdometry(const nav_msgs::Odometry::ConstPtr& msg)
 {
-  auto reject = [this](const std::string& why) {
-    ++rejected_messages_;
-    ROS_WARN_THROTTLE(2.0, "tow_sim: rejected ship odometry: %s", why.c_str());
-  };
-  if (msg->header.frame_id != params_.world_frame)
-    return reject("header.frame_id = '" + msg->header.frame_id + "', expected the world frame '" +
-                  params_.world_frame + "' (parameter ~world_frame)");
-  const auto& pose = msg->pose.pose;
-  const auto& twist = msg->twist.twist;
-  if (!finite(pose.position) || !finite(twist.linear) || !finite(twist.angular) || !std::isfinite(pose.orientation.w) ||
-      !std::isfinite(pose.orientation.x) || !std::isfinite(pose.orientation.y) || !std::isfinite(pose.orientation.z))
-    return reject("a pose or twist field is not finite");
-  Eigen::Quaterniond q(pose.orientation.w, pose.orientation.x, pose.orientation.y, pose.orientation.z);
-  if (std::abs(q.norm() - 1.0) > 0.01)
-    return reject("pose.pose.orientation has norm " + std::to_string(q.norm()) + ", must be within 0.01 of 1");
-  q.normalize();
   const ros::Time now = ros::Time::now();
   const ros::Time stamp = msg->header.stamp.isZero() ? now : msg->header.stamp;
-  if (stamp > now + ros::Duration(1.0))
-    return reject("header.stamp is " + std::to_string((stamp - now).toSec()) + " s in the future");
   if (!started_ && track_.empty())
     time_origin_ = stamp - ros::Duration(params_.odom_delay + 1.0);
-  const double t = relative(stamp);
-  if (!track_.empty() && t <= track_.newestTime())
-    return reject("header.stamp is not after the previous message's (duplicated or reordered)");
-  const Eigen::Matrix3d R = q.toRotationMatrix();
-  const Eigen::Vector3d p(pose.position.x, pose.position.y, pose.position.z);
-  const Eigen::Vector3d tow_W = p + R * params_.tow_point_S;
-  // REP-105: the twist is in the child (ship) frame.
-  const Eigen::Vector3d v = R * Eigen::Vector3d(twist.linear.x, twist.linear.y, twist.linear.z);
-  const Eigen::Vector3d w = R * Eigen::Vector3d(twist.angular.x, twist.angular.y, twist.angular.z);
-  const Eigen::Vector3d v_tow = v + w.cross(R * params_.tow_point_S);
-  if (v_tow.norm() > params_.max_ship_speed)
-    return reject("tow-point speed " + std::to_string(v_tow.norm()) + " m/s exceeds ~max_ship_speed");
-  if (!track_.empty())
+  const auto& pose = msg->pose.pose;
+  const auto& twist = msg->twist.twist;
+  OdometryInput in;
+  in.t = relative(stamp);
+  in.frame_id = msg->header.frame_id;
+  in.p_W = Eigen::Vector3d(pose.position.x, pose.position.y, pose.position.z);
+  in.q_wxyz = Eigen::Vector4d(pose.orientation.w, pose.orientation.x, pose.orientation.y, pose.orientation.z);
+  in.v_S = Eigen::Vector3d(twist.linear.x, twist.linear.y, twist.linear.z);
+  in.w_S = Eigen::Vector3d(twist.angular.x, twist.angular.y, twist.angular.z);
+  const OdometryResult r = checkOdometry(in, odometry_limits_, track_, relative(now));
+  if (!r.accepted)
   {
-    const double dt = t - track_.newestTime();
-    const double jump = (tow_W - track_(t).p_W).norm();
-    if (jump > params_.max_ship_speed * dt + 10.0)
-      return reject("the tow point jumped " + std::to_string(jump) + " m from where the previous message put it");
+    ++rejected_messages_;
+    ROS_WARN_THROTTLE(2.0, "tow_sim: rejected ship odometry: %s", r.reason.c_str());
+    return;
   }
-  track_.add(t, tow_W, v_tow);
-  ship_attitude_ = q;
-  const Eigen::Vector3d heading(R(0, 0), R(1, 0), 0.0);
-  if (heading.norm() > 1e-6)
-    track_direction_ = heading.normalized();
+  track_.add(in.t, r.tow_p_W, r.tow_v_W);
+  ship_attitude_ = r.q_WS;
+  const Eigen::Vector3d heading = r.q_WS * Eigen::Vector3d::UnitX();
+  if (heading.head<2>().norm() > 1e-6)
+    track_direction_ = Eigen::Vector3d(heading.x(), heading.y(), 0.0).normalized();
   last_odom_wall_ = ros::WallTime::now().toSec();
   if (!started_)
   {
-    start(t);
+    start(in.t);
     ROS_INFO("tow_sim: first ship odometry received; cable laid out (%s) from the tow point",
              params_.initial_shape.c_str());
   }

@@ -155,6 +155,9 @@ TEST(Config, ErrorsNameTheFullKeyPathTheValueAndTheRange)
   e = errorOf("cable: 3");
   EXPECT_NE(e.find("cable: must be a mapping"), std::string::npos) << e;
   EXPECT_THROW(loadConfigFile("/nonexistent/tow_sim.yaml"), std::invalid_argument);
+  // Found by fuzzing: a mapping used as a key is refused like any other bad key.
+  e = errorOf("cable: {{a: 1}: 2}");
+  EXPECT_NE(e.find("cable: has a key that is not a plain name"), std::string::npos) << e;
 }
 
 }  // namespace

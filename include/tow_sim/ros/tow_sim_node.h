@@ -17,6 +17,7 @@
 
 #include "tow_sim/FinCommand.h"
 #include "tow_sim/core/config.h"
+#include "tow_sim/core/odometry_check.h"
 #include "tow_sim/core/ship_track.h"
 #include "tow_sim/core/simulator.h"
 #include "tow_sim/core/vehicle.h"
@@ -72,6 +73,7 @@ private:
   std::shared_ptr<ChainModel> model_;
   std::unique_ptr<Simulator> sim_;
   ShipTrack track_;
+  OdometryLimits odometry_limits_;
   AttitudeHold attitude_;
 
   ros::Time time_origin_;

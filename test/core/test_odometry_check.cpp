@@ -1,0 +1,79 @@
+// Ship odometry checks: each kind of bad message has its defined refusal; a good one gives the tow point.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "tow_sim/core/odometry_check.h"
+
+namespace tow_sim
+{
+namespace
+{
+OdometryInput good(double t)
+{
+  OdometryInput in;
+  in.t = t;
+  in.frame_id = "odom";
+  in.p_W = Eigen::Vector3d(2.0 * t, 0.0, 0.0);
+  in.v_S = Eigen::Vector3d(2.0, 0.0, 0.0);
+  return in;
+}
+
+TEST(OdometryCheck, GivesTheTowPointOfAGoodMessage)
+{
+  ShipTrack track;
+  OdometryInput in = good(1.0);
+  // Heading north (90 deg), turning at 0.01 rad/s: the tow point 20 m astern lies 20 m south and
+  // moves with the ship plus w x r.
+  in.q_wxyz = Eigen::Vector4d(std::cos(M_PI / 4), 0, 0, std::sin(M_PI / 4));
+  in.w_S = Eigen::Vector3d(0, 0, 0.01);
+  const OdometryResult r = checkOdometry(in, OdometryLimits(), track, 1.0);
+  ASSERT_TRUE(r.accepted) << r.reason;
+  EXPECT_LT((r.tow_p_W - Eigen::Vector3d(2.0, -20.0, 0.0)).norm(), 1e-12);
+  EXPECT_LT((r.tow_v_W - Eigen::Vector3d(0.2, 2.0, 0.0)).norm(), 1e-12);
+}
+
+TEST(OdometryCheck, RefusesEachKindOfBadMessage)
+{
+  ShipTrack track;
+  const OdometryLimits limits;
+  OdometryResult first = checkOdometry(good(1.0), limits, track, 1.0);
+  ASSERT_TRUE(first.accepted);
+  track.add(1.0, first.tow_p_W, first.tow_v_W);
+  auto refused = [&](OdometryInput in, const std::string& needle) {
+    const OdometryResult r = checkOdometry(in, limits, track, 2.0);
+    EXPECT_FALSE(r.accepted) << needle;
+    EXPECT_NE(r.reason.find(needle), std::string::npos) << r.reason;
+  };
+  OdometryInput in = good(1.5);
+  in.frame_id = "map";
+  refused(in, "header.frame_id = 'map'");
+  in = good(1.5);
+  in.p_W.x() = std::numeric_limits<double>::quiet_NaN();
+  refused(in, "not finite");
+  in = good(1.5);
+  in.q_wxyz.setZero();
+  refused(in, "orientation has norm 0");
+  in = good(1.5);
+  in.q_wxyz = Eigen::Vector4d(1.5, 0, 0, 0);
+  refused(in, "orientation has norm 1.5");
+  refused(good(1.0), "not after the previous");  // duplicate
+  refused(good(0.5), "not after the previous");  // reordered
+  refused(good(5.0), "in the future");
+  in = good(1.5);
+  in.v_S.x() = 40.0;
+  refused(in, "exceeds max_ship_speed");
+  in = good(1.5);
+  in.p_W.y() = 3000.0;
+  refused(in, "jumped");
+  // Nearly unit quaternions are normalised and accepted.
+  in = good(1.5);
+  in.q_wxyz = Eigen::Vector4d(1.005, 0, 0, 0);
+  const OdometryResult r = checkOdometry(in, limits, track, 2.0);
+  EXPECT_TRUE(r.accepted) << r.reason;
+  EXPECT_NEAR(r.q_WS.norm(), 1.0, 1e-15);
+}
+
+}  // namespace
+}  // namespace tow_sim
