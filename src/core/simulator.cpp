@@ -15,6 +15,8 @@ namespace
 {
 // Smallest adaptive step [s] before the integration is declared failed.
 constexpr double kMinStep = 1e-10;
+// A joint moving faster than this relative to the tow point [m/s] means the integration ran away.
+constexpr double kMaxRelativeSpeed = 200.0;
 
 bool allFinite(const std::vector<double>& y)
 {
@@ -158,6 +160,13 @@ double Simulator::lengthErrorOf(const StateVector& y, double t) const
 
 double Simulator::lengthError() const { return lengthErrorOf(y_, t_); }
 
+double Simulator::largestRelativeSpeed(double t) const
+{
+  const int n = model_->jointCount();
+  Eigen::Map<const Eigen::Matrix3Xd> v(y_.data() + 3 * n, 3, n);
+  return (v.colwise() - ship_(t).v_W).colwise().norm().maxCoeff();
+}
+
 StepReport Simulator::advanceTo(double t_end)
 {
   if (!(t_end >= t_))
@@ -203,12 +212,16 @@ StepReport Simulator::advanceTo(double t_end)
       if (clamped && remaining - (t_ - t_prev) < 1e-12)
         t_ = t_end;
     }
-    if (!allFinite(y_))
+    const bool finite = allFinite(y_);
+    const double speed = finite ? largestRelativeSpeed(t_) : 0.0;
+    if (!finite || speed > kMaxRelativeSpeed)
     {
       y_ = y_prev;
       t_ = t_prev;
       refreshOutputs();
-      throw std::runtime_error("integration diverged: non-finite state at t = " + std::to_string(t_) + " s");
+      throw std::runtime_error(finite ? "integration ran away: a joint moves at " + std::to_string(speed) +
+                                            " m/s relative to the tow point at t = " + std::to_string(t_) + " s"
+                                      : "integration diverged: non-finite state at t = " + std::to_string(t_) + " s");
     }
     ++report.steps;
     report.max_length_error = std::max(report.max_length_error, lengthErrorOf(y_, t_));

@@ -59,8 +59,9 @@ public:
   // std::invalid_argument for a wrong size or a non-finite value.
   void reset(double t, const ChainState& state);
 
-  // Integrate to t_end (>= time()). Throws std::runtime_error if the state stops being finite or the
-  // step size collapses; the simulator then keeps the last good state.
+  // Integrate to t_end (>= time()). Throws std::runtime_error if the state stops being finite, a joint
+  // runs away (faster than 200 m/s relative to the tow point) or the step size collapses; the
+  // simulator then keeps the last good state.
   StepReport advanceTo(double t_end);
 
   double time() const { return t_; }
@@ -86,6 +87,7 @@ private:
   void project(double t);
   void refreshOutputs();
   double lengthErrorOf(const StateVector& y, double t) const;
+  double largestRelativeSpeed(double t) const;  // [m/s] fastest joint relative to the tow point
 
   std::shared_ptr<ChainModel> model_;
   ShipMotion ship_;
