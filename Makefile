@@ -11,7 +11,7 @@ export PATH := /usr/bin:/bin:$(PATH)
 CATKIN_ARGS := -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3
 JOBS ?= 2
 
-.PHONY: deps workspace build test sanitize fuzz demo offline-demo screenshot bench clean
+.PHONY: deps workspace build test sanitize fuzz soak demo offline-demo screenshot bench clean
 SAN_DIR := $(WS)/sanitize
 SAN_FLAGS := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all
 FUZZ_DIR := $(WS)/fuzz
@@ -57,9 +57,15 @@ sanitize: deps
 	  > $(SAN_DIR).ctest.log 2>&1 || { tail -n 80 $(SAN_DIR).ctest.log; exit 1; }
 	@tail -n 3 $(SAN_DIR).ctest.log
 
+# The node for 10 minutes of wall time beside a misbehaving odometry publisher (make test runs 2).
+soak: build
+	cd $(WS) && catkin_make $(CATKIN_ARGS) -j$(JOBS) tests
+	cd $(WS) && source devel/setup.bash && rostest tow_sim odom_soak.test duration:=600
+
 # libFuzzer (clang) on the configuration/scenario loader and on odometry and fin-command handling,
 # FUZZ_SECONDS each, from the seed corpus in fuzz/corpus; fails on any crash or sanitizer report.
 fuzz: deps
+	@mkdir -p $(FUZZ_DIR)
 	cmake -S $(REPO) -B $(FUZZ_DIR) -DTOW_SIM_CORE_ONLY=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	  -DCMAKE_CXX_COMPILER=clang++ "-DCMAKE_CXX_FLAGS=$(SAN_FLAGS)" > $(FUZZ_DIR).configure.log
 	cmake --build $(FUZZ_DIR) -j$(JOBS) --target fuzz_config_loader fuzz_odometry > $(FUZZ_DIR).build.log 2>&1 \

@@ -291,7 +291,8 @@ void TowSimNode::physicsTick(const ros::TimerEvent&)
   catch (const std::runtime_error& e)
   {
     ++restarts_;
-    ROS_ERROR("tow_sim: %s; restarting from the initial shape at the current ship pose", e.what());
+    ROS_ERROR_THROTTLE(5.0, "tow_sim: %s; restarting from the initial shape at the current ship pose (%d restarts)",
+                       e.what(), restarts_);
     start(sim_->time());
   }
   const double wall = (ros::WallTime::now() - wall_start).toSec();
@@ -351,12 +352,18 @@ void TowSimNode::publishTick(const ros::TimerEvent&)
   odom.twist.twist.angular = ros_conv::toVector3(R.transpose() * o.omega_W);
   vehicle_odom_pub_.publish(odom);
 
-  geometry_msgs::TransformStamped tf;
-  tf.header = header;
-  tf.child_frame_id = params_.vehicle_frame;
-  tf.transform.translation = ros_conv::toVector3(o.p_cg_W);
-  tf.transform.rotation = odom.pose.pose.orientation;
-  tf_broadcaster_.sendTransform(tf);
+  // tf listeners warn about repeated stamps: while the simulation holds (paused, late odometry, a slow
+  // physics rate) the transform is sent once per new simulation time only.
+  if (header.stamp > last_tf_stamp_)
+  {
+    geometry_msgs::TransformStamped tf;
+    tf.header = header;
+    tf.child_frame_id = params_.vehicle_frame;
+    tf.transform.translation = ros_conv::toVector3(o.p_cg_W);
+    tf.transform.rotation = odom.pose.pose.orientation;
+    tf_broadcaster_.sendTransform(tf);
+    last_tf_stamp_ = header.stamp;
+  }
 
   tow_sim::FinLoads loads;
   loads.header = header;

@@ -25,7 +25,7 @@
 
 namespace
 {
-const char* const kNodes[] = { "base", "elevator", "rudder", "robust" };
+const char* const kNodes[] = { "base", "elevator", "rudder", "robust", "unstable" };
 
 struct Recorder
 {
@@ -76,8 +76,8 @@ public:
     publishClock();
     // Wait until every node listens to the ship before the first odometry, so all start alike.
     const ros::WallTime give_up = ros::WallTime::now() + ros::WallDuration(60.0);
-    while ((odom_pub_.getNumSubscribers() < 3 || robust_odom_pub_.getNumSubscribers() < 1 ||
-            clock_pub_.getNumSubscribers() < 4) &&
+    while ((odom_pub_.getNumSubscribers() < 4 || robust_odom_pub_.getNumSubscribers() < 1 ||
+            clock_pub_.getNumSubscribers() < 5) &&
            ros::WallTime::now() < give_up)
       ros::WallDuration(0.05).sleep();
   }
@@ -306,6 +306,22 @@ TEST(TowSimNode, PauseAndResetServicesWork)
   // Laid out again as a straight line at 0.5 rad: 100 m of cable and the bail at sin(0.5) of that depth.
   std::printf("reset: depth %.2f m before, %.2f m after\n", depth_before, s.vehicle_depth);
   EXPECT_NEAR(s.vehicle_depth, 100.0 * std::sin(0.5), 3.0);
+}
+
+TEST(TowSimNode, DivergenceRestartsAndNothingNonFiniteIsPublished)
+{
+  // The unstable node has been diverging since the start: it says so and keeps publishing finite states.
+  world->advance(2.0);
+  std::lock_guard<std::mutex> lock(world->rec_.mutex);
+  int restarts = -1;
+  for (const auto& kv : world->rec_.diagnostics)
+    if (kv.first.find("unstable") != std::string::npos && kv.first.find("restarts after divergence") != std::string::npos)
+      restarts = std::atoi(kv.second.c_str());
+  std::printf("unstable node: %d restarts after divergence, %d cable/state messages\n", restarts,
+              world->rec_.state_count["unstable"]);
+  EXPECT_GE(restarts, 1);
+  EXPECT_GT(world->rec_.state_count["unstable"], 0);
+  EXPECT_TRUE(allFinite(world->rec_.state["unstable"]));
 }
 
 TEST(TowSimNode, BadConfigurationExitsNamingTheParameter)

@@ -77,6 +77,7 @@ private:
   AttitudeHold attitude_;
 
   ros::Time time_origin_;
+  ros::Time last_tf_stamp_;
   bool started_ = false;
   bool paused_ = false;
   Eigen::Quaterniond ship_attitude_ = Eigen::Quaterniond::Identity();

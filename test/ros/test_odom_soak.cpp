@@ -1,0 +1,125 @@
+// Soak of tow_sim_node against a misbehaving odometry publisher, in wall time: normal 20 Hz stretches,
+// dropouts of 0.5 to 5 s (longer than max_extrapolation: the node must hold, not stop publishing),
+// bursts of 50 messages at once, a publisher restart, and junk messages (NaN, zero quaternion,
+// stamps from the past). Every 10 s window must hold cable/state messages at >= 80 % of the
+// 10 Hz publish rate, all finite.
+#include <gtest/gtest.h>
+
+#include <nav_msgs/Odometry.h>
+#include <ros/ros.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <mutex>
+#include <random>
+
+#include "tow_sim/CableState.h"
+
+namespace
+{
+std::mutex mutex;
+int window_count = 0;
+bool all_finite = true;
+
+void onState(const tow_sim::CableState::ConstPtr& s)
+{
+  bool finite = std::isfinite(s->tension_ship) && std::isfinite(s->vehicle_depth);
+  for (const auto& p : s->joints)
+    finite = finite && std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+  std::lock_guard<std::mutex> lock(mutex);
+  ++window_count;
+  all_finite = all_finite && finite;
+}
+
+TEST(OdomSoak, KeepsPublishingThroughDropoutsBurstsAndRestarts)
+{
+  ros::NodeHandle nh, pnh("~");
+  double duration = 120.0;
+  pnh.param("duration", duration, duration);
+  ros::Publisher odom = nh.advertise<nav_msgs::Odometry>("ship/odom", 100);
+  ros::Subscriber sub = nh.subscribe("cable/state", 100, onState);
+  ros::AsyncSpinner spinner(1);
+  spinner.start();
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const ros::WallTime start = ros::WallTime::now();
+  double x = 0.0;
+  ros::Time last_stamp;
+  auto message = [&](const ros::Time& stamp) {
+    nav_msgs::Odometry m;
+    m.header.stamp = stamp;
+    m.header.frame_id = "odom";
+    m.pose.pose.position.x = x;
+    m.pose.pose.orientation.w = 1.0;
+    m.twist.twist.linear.x = 2.0;
+    return m;
+  };
+  int windows = 0, worst = 1000000;
+  ros::WallTime window_start = ros::WallTime::now() + ros::WallDuration(10.0);  // first 10 s: start-up
+  ros::Time previous = ros::Time::now();
+  while ((ros::WallTime::now() - start).toSec() < duration && ros::ok())
+  {
+    const ros::Time now = ros::Time::now();
+    x += 2.0 * (now - previous).toSec();  // the ship keeps moving even when its messages do not
+    previous = now;
+    const double pick = u(rng);
+    if (pick < 0.01)  // dropout
+      ros::WallDuration(0.5 + 4.5 * u(rng)).sleep();
+    else if (pick < 0.02)  // burst: 50 messages at once, stamps spread over the last 0.5 s
+    {
+      for (int i = 0; i < 50; ++i)
+        odom.publish(message(now - ros::Duration(0.5 - 0.01 * i)));
+    }
+    else if (pick < 0.025)  // junk
+    {
+      nav_msgs::Odometry m = message(now);
+      m.pose.pose.position.y = std::numeric_limits<double>::quiet_NaN();
+      odom.publish(m);
+      m = message(now);
+      m.pose.pose.orientation.w = 0.0;
+      odom.publish(m);
+      odom.publish(message(now - ros::Duration(30.0)));
+    }
+    else if (pick < 0.027)  // restart: the publisher goes away and comes back
+    {
+      odom.shutdown();
+      ros::WallDuration(2.0).sleep();
+      odom = nh.advertise<nav_msgs::Odometry>("ship/odom", 100);
+      ros::WallDuration(0.5).sleep();
+    }
+    else
+      odom.publish(message(now));
+    ros::WallDuration(0.05).sleep();
+    if (ros::WallTime::now() >= window_start + ros::WallDuration(10.0))
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      if (windows > 0 || window_count > 0)
+        worst = std::min(worst, window_count);
+      ++windows;
+      window_count = 0;
+      window_start = ros::WallTime::now();
+    }
+    else if (windows == 0 && ros::WallTime::now() < window_start)
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      window_count = 0;  // still in the start-up period
+    }
+  }
+  std::printf("odometry soak: %.0f s, %d windows of 10 s, fewest cable/state messages in a window: %d (rate 10 Hz)\n",
+              duration, windows, worst);
+  EXPECT_GE(windows, static_cast<int>(duration / 10.0) - 2);
+  EXPECT_GE(worst, 80);
+  std::lock_guard<std::mutex> lock(mutex);
+  EXPECT_TRUE(all_finite);
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "test_odom_soak");
+  return RUN_ALL_TESTS();
+}
