@@ -15,6 +15,23 @@ ShipTrack::ShipTrack(double max_extrapolation, size_t capacity)
 double ShipTrack::newestTime() const { return samples_.empty() ? 0.0 : samples_.back().t; }
 double ShipTrack::oldestTime() const { return samples_.empty() ? 0.0 : samples_.front().t; }
 
+Eigen::Vector3d ShipTrack::differenceVelocity(size_t i) const
+{
+  const size_t lo = i > 0 ? i - 1 : i, hi = i + 1 < samples_.size() ? i + 1 : i;
+  return (samples_[hi].p - samples_[lo].p) / (samples_[hi].t - samples_[lo].t);
+}
+
+void ShipTrack::updateVelocity(size_t i)
+{
+  // Trust the reported velocity only where the positions agree with it: publishers that send a zero
+  // or stale twist, or a burst of stale positions, would otherwise make the interpolant swing back
+  // and forth between samples with violent accelerations.
+  Sample& s = samples_[i];
+  const Eigen::Vector3d from_positions = differenceVelocity(i);
+  const double tolerance = kVelocityTolerance + kVelocityRelativeTolerance * from_positions.norm();
+  s.v = (s.v_reported - from_positions).norm() <= tolerance ? s.v_reported : from_positions;
+}
+
 void ShipTrack::updateAcceleration(size_t i)
 {
   Sample& s = samples_[i];
@@ -34,15 +51,18 @@ bool ShipTrack::add(double t, const Eigen::Vector3d& p_W, const Eigen::Vector3d&
     return false;
   if (!samples_.empty() && !(t > samples_.back().t))
     return false;
-  samples_.push_back(Sample{ t, p_W, v_W, Eigen::Vector3d::Zero() });
+  samples_.push_back(Sample{ t, p_W, v_W, v_W, Eigen::Vector3d::Zero() });
   if (samples_.size() > capacity_)
     samples_.pop_front();
   const size_t n = samples_.size();
-  updateAcceleration(n - 1);
-  if (n >= 2)
-    updateAcceleration(n - 2);
-  if (n == 2)
-    updateAcceleration(0);
+  if (n < 2)
+    return true;
+  // The new sample changes the velocity check of itself and its predecessor, and the accelerations
+  // of the three newest samples.
+  updateVelocity(n - 1);
+  updateVelocity(n - 2);
+  for (size_t k = n >= 3 ? n - 3 : 0; k < n; ++k)
+    updateAcceleration(k);
   return true;
 }
 

@@ -2,6 +2,7 @@
 // velocity and acceleration across samples, bounded extrapolation, rejected samples.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -52,6 +53,30 @@ TEST(ShipTrack, TurningShipIsFollowedWithContinuousAcceleration)
     EXPECT_NEAR(s.a_W.norm(), speed * speed / radius, 1e-4);
   }
   EXPECT_LT(worst_jump, 1e-6);
+}
+
+TEST(ShipTrack, ZeroOrStaleTwistDoesNotMakeTheTrackSwing)
+{
+  // A ship at 2 m/s whose odometry reports no velocity at all, at 20 Hz: the track must still move
+  // smoothly at about 2 m/s instead of stopping at every sample.
+  ShipTrack track;
+  for (int i = 0; i <= 100; ++i)
+    track.add(0.05 * i, Eigen::Vector3d(0.1 * i, 0, 0), Eigen::Vector3d::Zero());
+  double worst_acceleration = 0.0;
+  for (double t = 0.2; t < 4.8; t += 0.0071)
+  {
+    EXPECT_NEAR(track(t).v_W.x(), 2.0, 1e-9) << t;
+    worst_acceleration = std::max(worst_acceleration, track(t).a_W.norm());
+  }
+  EXPECT_LT(worst_acceleration, 1e-6);
+  // A burst of stale positions with fresh stamps: bounded velocities, no swing back and forth.
+  ShipTrack burst;
+  for (int i = 0; i < 20; ++i)
+    burst.add(0.05 * i, Eigen::Vector3d(0.1 * i, 0, 0), Eigen::Vector3d(2, 0, 0));
+  for (int i = 0; i < 50; ++i)  // 50 messages 10 ms apart, all at the position of the last one
+    burst.add(1.0 + 0.01 * i, Eigen::Vector3d(1.9, 0, 0), Eigen::Vector3d(2, 0, 0));
+  for (double t = 1.0; t < 1.49; t += 0.001)
+    EXPECT_LT(burst(t).v_W.norm(), 2.5) << t;
 }
 
 TEST(ShipTrack, ExtrapolatesForABoundedTimeAndRejectsBadSamples)

@@ -1,8 +1,9 @@
 // Soak of tow_sim_node against a misbehaving odometry publisher, in wall time: normal 20 Hz stretches,
 // dropouts of 0.5 to 5 s (longer than max_extrapolation: the node must hold, not stop publishing),
-// bursts of 50 messages at once, a publisher restart, and junk messages (NaN, zero quaternion,
-// stamps from the past). Every 10 s window must hold cable/state messages at >= 80 % of the
-// 10 Hz publish rate, all finite.
+// bursts of 50 delayed messages at once (most of them older than what already arrived), stretches
+// with a zero twist, a publisher restart, and junk messages (NaN, zero quaternion, stamps from the
+// past). Every 10 s window must hold cable/state messages at >= 80 % of the 10 Hz publish rate, all
+// finite, and the simulation must never diverge.
 #include <gtest/gtest.h>
 
 #include <nav_msgs/Odometry.h>
@@ -10,10 +11,13 @@
 
 #include <atomic>
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <limits>
 #include <mutex>
 #include <random>
+
+#include <diagnostic_msgs/DiagnosticArray.h>
 
 #include "tow_sim/CableState.h"
 
@@ -22,6 +26,16 @@ namespace
 std::mutex mutex;
 int window_count = 0;
 bool all_finite = true;
+int restarts = -1;
+
+void onDiagnostics(const diagnostic_msgs::DiagnosticArray::ConstPtr& m)
+{
+  std::lock_guard<std::mutex> lock(mutex);
+  for (const auto& status : m->status)
+    for (const auto& kv : status.values)
+      if (kv.key == "restarts after divergence")
+        restarts = std::atoi(kv.value.c_str());
+}
 
 void onState(const tow_sim::CableState::ConstPtr& s)
 {
@@ -40,6 +54,7 @@ TEST(OdomSoak, KeepsPublishingThroughDropoutsBurstsAndRestarts)
   pnh.param("duration", duration, duration);
   ros::Publisher odom = nh.advertise<nav_msgs::Odometry>("ship/odom", 100);
   ros::Subscriber sub = nh.subscribe("cable/state", 100, onState);
+  ros::Subscriber diag = nh.subscribe("/diagnostics", 10, onDiagnostics);
   ros::AsyncSpinner spinner(1);
   spinner.start();
   std::mt19937 rng(7);
@@ -67,10 +82,29 @@ TEST(OdomSoak, KeepsPublishingThroughDropoutsBurstsAndRestarts)
     const double pick = u(rng);
     if (pick < 0.01)  // dropout
       ros::WallDuration(0.5 + 4.5 * u(rng)).sleep();
-    else if (pick < 0.02)  // burst: 50 messages at once, stamps spread over the last 0.5 s
+    else if (pick < 0.02)  // burst: 50 messages at once, as if delayed and delivered together
     {
+      const double x_now = x;
       for (int i = 0; i < 50; ++i)
-        odom.publish(message(now - ros::Duration(0.5 - 0.01 * i)));
+      {
+        const double age = 0.5 - 0.01 * i;
+        x = x_now - 2.0 * age;
+        odom.publish(message(now - ros::Duration(age)));
+      }
+      x = x_now;
+    }
+    else if (pick < 0.022)  // a stretch of messages with a zero twist, as some drivers send
+    {
+      for (int i = 0; i < 20; ++i)
+      {
+        const ros::Time t = ros::Time::now();
+        x += 2.0 * (t - previous).toSec();
+        previous = t;
+        nav_msgs::Odometry m = message(t);
+        m.twist.twist.linear.x = 0.0;
+        odom.publish(m);
+        ros::WallDuration(0.05).sleep();
+      }
     }
     else if (pick < 0.025)  // junk
     {
@@ -113,6 +147,8 @@ TEST(OdomSoak, KeepsPublishingThroughDropoutsBurstsAndRestarts)
   EXPECT_GE(worst, 80);
   std::lock_guard<std::mutex> lock(mutex);
   EXPECT_TRUE(all_finite);
+  std::printf("odometry soak: restarts after divergence %d\n", restarts);
+  EXPECT_EQ(restarts, 0);
 }
 
 }  // namespace

@@ -1,6 +1,8 @@
 // Tow-point motion rebuilt from timestamped samples (e.g. ship odometry), with continuous position,
 // velocity and acceleration (physics.md §7): quintic Hermite pieces between samples, the knot
-// accelerations taken from the velocities on either side. Past the newest sample it extrapolates with
+// accelerations taken from the velocities on either side. A reported velocity that the positions
+// around it contradict (by more than 0.5 m/s + 20 %) is replaced by the one the positions give, so a
+// zero or stale twist cannot make the track swing. Past the newest sample it extrapolates with
 // constant acceleration for at most `max_extrapolation`, then holds that state.
 #pragma once
 
@@ -31,8 +33,12 @@ private:
   struct Sample
   {
     double t;
-    Eigen::Vector3d p, v, a;
+    Eigen::Vector3d p, v_reported, v, a;  // v: the velocity used (reported, or from the positions)
   };
+  static constexpr double kVelocityTolerance = 0.5;          // [m/s]
+  static constexpr double kVelocityRelativeTolerance = 0.2;  // [-]
+  Eigen::Vector3d differenceVelocity(size_t i) const;
+  void updateVelocity(size_t i);
   void updateAcceleration(size_t i);
 
   double max_extrapolation_;
