@@ -143,7 +143,8 @@ TEST(OdomSoak, KeepsPublishingThroughDropoutsBurstsAndRestarts)
   }
   std::printf("odometry soak: %.0f s, %d windows of 10 s, fewest cable/state messages in a window: %d (rate 10 Hz)\n",
               duration, windows, worst);
-  EXPECT_GE(windows, static_cast<int>(duration / 10.0) - 2);
+  // A window closes at the first check after 10 s; dropouts and restarts can stretch it to 15 s.
+  EXPECT_GE(windows, static_cast<int>(duration / 15.0) - 1);
   EXPECT_GE(worst, 80);
   std::lock_guard<std::mutex> lock(mutex);
   EXPECT_TRUE(all_finite);
