@@ -24,4 +24,12 @@ void ChainModel::setCurrent(const Eigen::Vector3d& current_W)
   env_ = candidate;
 }
 
+void ChainModel::setCurrentProfile(const std::vector<CurrentSample>& profile)
+{
+  Environment candidate = env_;
+  candidate.current_profile = profile;
+  validate(candidate);
+  env_ = candidate;
+}
+
 }  // namespace tow_sim

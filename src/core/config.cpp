@@ -41,6 +41,15 @@ void readEnvironment(Section s, Environment& e)
   s.read("gravity", e.gravity);
   s.read("water_density", e.water_density);
   s.read("current", e.current_W);
+  e.current_profile.clear();
+  for (Section item : s.items("current_profile"))
+  {
+    CurrentSample sample;
+    item.read("depth", sample.depth);
+    item.read("velocity", sample.velocity_W);
+    item.finish();
+    e.current_profile.push_back(sample);
+  }
   s.finish();
 }
 
@@ -254,6 +263,14 @@ YAML::Node toYaml(const SimulationConfig& c)
   env["water_density"] = c.environment.water_density;
   env["current"] = std::vector<double>{ c.environment.current_W.x(), c.environment.current_W.y(),
                                         c.environment.current_W.z() };
+  env["current_profile"] = YAML::Node(YAML::NodeType::Sequence);
+  for (const CurrentSample& sample : c.environment.current_profile)
+  {
+    YAML::Node item;
+    item["depth"] = sample.depth;
+    item["velocity"] = std::vector<double>{ sample.velocity_W.x(), sample.velocity_W.y(), sample.velocity_W.z() };
+    env["current_profile"].push_back(item);
+  }
 
   YAML::Node num = root["numerics"];
   num["stepper"] = c.numerics.stepper == StepperType::kDopri5 ? "dopri5" : "rk4";

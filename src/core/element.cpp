@@ -91,7 +91,7 @@ void cableSegmentDynamics(const CableSegmentModel& seg, const ElementKinematics&
   out.mass.topLeftCorner<3, 3>() = seg.mass * I3 + seg.added_mass * P;
   out.mass.bottomRightCorner<3, 3>() = (seg.mass * seg.length * seg.length / 12.0) * I3;
 
-  const VelocityForces vf = velocityForces(k, env.current_W, seg.c1, seg.c2, seg.tangential_model, seg.smoothing_speed);
+  const VelocityForces vf = velocityForces(k, env.currentAt(k.pointAt(0.5).z()), seg.c1, seg.c2, seg.tangential_model, seg.smoothing_speed);
   out.wrench.head<3>() = vf.force - seg.net_weight * Eigen::Vector3d::UnitZ();
   out.wrench.tail<3>() = vf.moment;
 }
@@ -121,7 +121,7 @@ void RigidEndElement::dynamics(double /*t*/, const ElementKinematics& k, const E
 
   const double c1 = 0.5 * env.water_density * p_.tangential_drag_coefficient * kPi * p_.diameter;
   const double c2 = 0.5 * env.water_density * p_.normal_drag_coefficient * p_.diameter;
-  const VelocityForces vf = velocityForces(k, env.current_W, c1, c2, TangentialDragModel::kPode, smoothing_speed_);
+  const VelocityForces vf = velocityForces(k, env.currentAt(k.pointAt(0.5).z()), c1, c2, TangentialDragModel::kPode, smoothing_speed_);
 
   const Eigen::Vector3d weight = -p_.mass * env.gravity * Eigen::Vector3d::UnitZ();
   const Eigen::Vector3d buoyancy = env.water_density * env.gravity * p_.displaced_volume * Eigen::Vector3d::UnitZ();

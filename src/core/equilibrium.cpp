@@ -12,8 +12,10 @@ namespace tow_sim
 namespace
 {
 constexpr int kMaxIterations = 60;
+constexpr int kMaxPasses = 100;  // shooting passes in a current profile
 
-// The element's loads with its aft joint at the origin, axis s, both joints moving at u.
+// The element's loads with its aft joint at x_aft, axis s, both joints moving at u. (Only the depth of
+// x_aft matters, through a current profile.)
 struct Balance
 {
   const ChainModel& model;
@@ -21,13 +23,14 @@ struct Balance
   double t;
   Eigen::Vector3d u;
   Eigen::Vector3d T_aft;  // tension at the aft joint (0 below the vehicle)
+  Eigen::Vector3d x_aft;
 
   // Moment about the CG of everything on the element, given that the force balance fixes
   // T_fwd = T_aft - F: M - l s x (T_aft - gamma F). Also returns T_fwd.
   Eigen::Vector3d residual(const Eigen::Vector3d& s, Eigen::Vector3d* T_fwd = nullptr) const
   {
     const double l = model.elementLength(element);
-    const ElementKinematics k = ElementKinematics::fromJoints(-l * s, Eigen::Vector3d::Zero(), u, u);
+    const ElementKinematics k = ElementKinematics::fromJoints(x_aft - l * s, x_aft, u, u);
     BodyDynamics body;
     model.elementDynamics(element, t, k, body);
     const Eigen::Vector3d F = body.wrench.head<3>(), M = body.wrench.tail<3>();
@@ -108,6 +111,9 @@ bool isStable(const Balance& b, const Eigen::Vector3d& s)
   const Eigen::Matrix2d S = 0.5 * (J + J.transpose());
   return Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(S).eigenvalues().maxCoeff() <= 1e-9 * (1.0 + S.norm());
 }
+
+EquilibriumResult shoot(const ChainModel& model, double t, const Eigen::Vector3d& tow_point_W,
+                        const Eigen::Vector3d& ship_velocity_W, const Eigen::Matrix3Xd& joints, int iterations);
 }  // namespace
 
 EquilibriumResult steadyTowEquilibrium(const ChainModel& model, double t, const Eigen::Vector3d& tow_point_W,
@@ -116,17 +122,44 @@ EquilibriumResult steadyTowEquilibrium(const ChainModel& model, double t, const 
   if (!tow_point_W.allFinite() || !ship_velocity_W.allFinite())
     throw std::runtime_error("equilibrium: tow point and ship velocity must be finite");
   const int n = model.elementCount();
+  // With a current profile each element's balance depends on its depth, which is known only once the
+  // shape hangs from the tow point: repeat the shooting with the depths of the previous pass until
+  // they settle. A uniform current needs one pass.
+  const bool depth_dependent = !model.environment().current_profile.empty();
+  Eigen::Matrix3Xd joints = tow_point_W.replicate(1, n);
   EquilibriumResult result;
+  for (int pass = 0; pass < (depth_dependent ? kMaxPasses : 1); ++pass)
+  {
+    result = shoot(model, t, tow_point_W, ship_velocity_W, joints, result.iterations);
+    const double moved = (result.state.x - joints).cwiseAbs().maxCoeff();
+    joints = result.state.x;
+    if (moved < 1e-7 * (1.0 + model.totalLength()))
+      return result;
+  }
+  if (depth_dependent)
+    throw std::runtime_error("equilibrium: the shape did not settle in the current profile after " +
+                             std::to_string(kMaxPasses) + " passes");
+  return result;
+}
+
+namespace
+{
+EquilibriumResult shoot(const ChainModel& model, double t, const Eigen::Vector3d& tow_point_W,
+                        const Eigen::Vector3d& ship_velocity_W, const Eigen::Matrix3Xd& joints, int iterations)
+{
+  const int n = model.elementCount();
+  EquilibriumResult result;
+  result.iterations = iterations;
   result.tensions.resize(3, n);
   Eigen::Matrix3Xd axes(3, n);
   // The first guess for the vehicle: trailing the flow past it, slightly down.
-  const Eigen::Vector3d flow = ship_velocity_W - model.environment().current_W;
+  const Eigen::Vector3d flow = ship_velocity_W - model.environment().currentAt(joints.col(n - 1).z());
   Eigen::Vector3d guess = flow.norm() > 1e-6 ? Eigen::Vector3d(-flow.normalized()) : Eigen::Vector3d(-Eigen::Vector3d::UnitZ());
   guess = (guess - 0.2 * Eigen::Vector3d::UnitZ()).normalized();
   Eigen::Vector3d T_aft = Eigen::Vector3d::Zero();
   for (int e = n - 1; e >= 0; --e)
   {
-    const Balance b{ model, e, t, ship_velocity_W, T_aft };
+    const Balance b{ model, e, t, ship_velocity_W, T_aft, joints.col(e) };
     Eigen::Vector3d F_guess;
     b.residual(guess, &F_guess);
     const double scale = 1.0 + model.elementLength(e) * (T_aft.norm() + F_guess.norm());
@@ -151,7 +184,7 @@ EquilibriumResult steadyTowEquilibrium(const ChainModel& model, double t, const 
       std::ostringstream os;
       os << "equilibrium: no stable direction balances element " << e + 1 << " of " << n
          << (e == n - 1 ? " (the vehicle)" : "") << " at ship velocity (" << ship_velocity_W.transpose()
-         << ") m/s and current (" << model.environment().current_W.transpose() << ") m/s; moment residual "
+         << ") m/s and current (" << model.environment().currentAt(joints.col(e).z()).transpose() << ") m/s; moment residual "
          << residual << " N m";
       throw std::runtime_error(os.str());
     }
@@ -175,5 +208,6 @@ EquilibriumResult steadyTowEquilibrium(const ChainModel& model, double t, const 
   }
   return result;
 }
+}  // namespace
 
 }  // namespace tow_sim

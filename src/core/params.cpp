@@ -1,5 +1,7 @@
 #include "tow_sim/core/params.h"
 
+#include <algorithm>
+
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -49,6 +51,21 @@ double EndElementParams::transverseInertia() const
   return mass * (length * length / 12.0 + offset * offset);
 }
 
+Eigen::Vector3d Environment::profileAt(double depth) const
+{
+  const std::vector<CurrentSample>& c = current_profile;
+  if (depth <= c.front().depth)
+    return c.front().velocity_W;
+  if (depth >= c.back().depth)
+    return c.back().velocity_W;
+  // First sample deeper than `depth`; the profile is short, a binary search keeps long ones cheap.
+  const auto hi = std::upper_bound(c.begin(), c.end(), depth,
+                                   [](double d, const CurrentSample& sample) { return d < sample.depth; });
+  const auto lo = hi - 1;
+  const double f = (depth - lo->depth) / (hi->depth - lo->depth);
+  return (1.0 - f) * lo->velocity_W + f * hi->velocity_W;
+}
+
 void validate(const Environment& env, const std::string& p)
 {
   requireInRange(p + ".gravity", env.gravity, 0.0, 100.0, "[m/s^2]");
@@ -56,6 +73,18 @@ void validate(const Environment& env, const std::string& p)
   const char* axes[] = { ".current[0]", ".current[1]", ".current[2]" };
   for (int i = 0; i < 3; ++i)
     requireInRange(p + axes[i], env.current_W[i], -20.0, 20.0, "[m/s]");
+  requireInRange(p + ".current_profile (number of samples)", static_cast<double>(env.current_profile.size()), 0.0,
+                 10000.0, "[-]");
+  for (std::size_t j = 0; j < env.current_profile.size(); ++j)
+  {
+    const std::string item = p + ".current_profile[" + std::to_string(j) + "]";
+    const CurrentSample& sample = env.current_profile[j];
+    const double shallowest = j == 0 ? 0.0 : env.current_profile[j - 1].depth;
+    requireInRange(item + ".depth", sample.depth, shallowest, 12000.0,
+                   j == 0 ? "[m]" : "[m] (depths strictly increasing)", j > 0);
+    for (int i = 0; i < 3; ++i)
+      requireInRange(item + ".velocity[" + std::to_string(i) + "]", sample.velocity_W[i], -20.0, 20.0, "[m/s]");
+  }
 }
 
 void validate(const CableParams& c, const std::string& p)

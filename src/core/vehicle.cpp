@@ -159,6 +159,8 @@ Vehicle::Loads Vehicle::loads(double t, const ElementKinematics& k, const Enviro
   const Eigen::Vector3d& s = k.s;
   const Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
   Loads out;
+  // The vehicle is small beside the current's vertical scale: one current, at its CG, for all its loads.
+  const Eigen::Vector3d current = env.currentAt(k.pointAt(p_.cg_from_bail / tail).z());
   Eigen::Vector3d force = -p_.mass * env.gravity * up;
   const Eigen::Vector3d buoyancy = env.water_density * env.gravity * p_.displaced_volume * up;
   force += buoyancy;
@@ -167,7 +169,7 @@ Vehicle::Loads Vehicle::loads(double t, const ElementKinematics& k, const Enviro
   // Velocity forces over the bail-tail length, at its midpoint (as for a cable element).
   const double wet = env.water_density > 0.0 ? 1.0 : 0.0;  // vacuum: no hydrodynamic loads
   const VelocityForces vf =
-      velocityForces(k, env.current_W, wet * p_.c1, wet * p_.c2, TangentialDragModel::kPode, smoothing_speed_);
+      velocityForces(k, current, wet * p_.c1, wet * p_.c2, TangentialDragModel::kPode, smoothing_speed_);
   force += vf.force;
   moment += ((0.5 * tail - p_.cg_from_bail) * s).cross(vf.force) + vf.moment;
 
@@ -185,8 +187,8 @@ Vehicle::Loads Vehicle::loads(double t, const ElementKinematics& k, const Enviro
   rudder.drag_constant *= wet;
   elevator.lift_constant *= wet;
   elevator.drag_constant *= wet;
-  const Eigen::Vector3d v_vf = k.velocityAt(p_.vertical_fin_from_bail / tail) - env.current_W;
-  const Eigen::Vector3d v_hf = k.velocityAt(p_.horizontal_fin_from_bail / tail) - env.current_W;
+  const Eigen::Vector3d v_vf = k.velocityAt(p_.vertical_fin_from_bail / tail) - current;
+  const Eigen::Vector3d v_hf = k.velocityAt(p_.horizontal_fin_from_bail / tail) - current;
   out.rudder_loads = finPairLoads(rudder, FinPlane::kVertical, out.rudder, v_vf, frame.x, frame.y, frame.z,
                                   p_.vertical_fin_from_bail - p_.cg_from_bail);
   out.elevator_loads = finPairLoads(elevator, FinPlane::kHorizontal, out.elevator, v_hf, frame.x, frame.y, frame.z,
@@ -202,7 +204,8 @@ void Vehicle::dynamics(double t, const ElementKinematics& k, const Environment& 
 {
   const double gamma = p_.cg_from_bail / p_.tail_from_bail;
   const Eigen::Vector3d v_cg = k.velocityAt(gamma);
-  const BodyFrame frame = bodyFrame(k.s, headingHint(v_cg - env.current_W));
+  const Eigen::Vector3d current = env.currentAt(k.pointAt(gamma).z());
+  const BodyFrame frame = bodyFrame(k.s, headingHint(v_cg - current));
   const Eigen::Matrix3d R = frame.rotation();
   const Eigen::Matrix3d I3 = Eigen::Matrix3d::Identity();
   const Eigen::Matrix3d inertia_W = R * p_.inertia_B * R.transpose();
@@ -236,7 +239,7 @@ void Vehicle::dynamics(double t, const ElementKinematics& k, const Environment& 
     out.mass += T * A * T.transpose();
     if (p_.munk_terms)
     {
-      const Vector6d munk = munkWrench(A, R.transpose() * (v_cg - env.current_W), R.transpose() * k.omega);
+      const Vector6d munk = munkWrench(A, R.transpose() * (v_cg - current), R.transpose() * k.omega);
       out.wrench.head<3>() += R * munk.head<3>();
       out.wrench.tail<3>() += R * munk.tail<3>();
     }
@@ -249,7 +252,7 @@ VehicleOutputs Vehicle::outputs(double t, const ElementKinematics& k, const Envi
   VehicleOutputs o;
   o.p_cg_W = k.pointAt(gamma);
   o.v_cg_W = k.velocityAt(gamma);
-  const BodyFrame frame = bodyFrame(k.s, headingHint(o.v_cg_W - env.current_W));
+  const BodyFrame frame = bodyFrame(k.s, headingHint(o.v_cg_W - env.currentAt(o.p_cg_W.z())));
   const Eigen::Matrix3d R = frame.rotation();
   o.q_WB = Eigen::Quaterniond(R).normalized();
   o.v_cg_B = R.transpose() * o.v_cg_W;

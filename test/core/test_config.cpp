@@ -49,6 +49,12 @@ void expectSame(const SimulationConfig& a, const SimulationConfig& b)
   EXPECT_EQ(a.environment.gravity, b.environment.gravity);
   EXPECT_EQ(a.environment.water_density, b.environment.water_density);
   EXPECT_EQ(a.environment.current_W, b.environment.current_W);
+  ASSERT_EQ(a.environment.current_profile.size(), b.environment.current_profile.size());
+  for (std::size_t i = 0; i < a.environment.current_profile.size(); ++i)
+  {
+    EXPECT_EQ(a.environment.current_profile[i].depth, b.environment.current_profile[i].depth);
+    EXPECT_EQ(a.environment.current_profile[i].velocity_W, b.environment.current_profile[i].velocity_W);
+  }
   EXPECT_EQ(a.numerics.stepper, b.numerics.stepper);
   EXPECT_EQ(a.numerics.abs_tol, b.numerics.abs_tol);
   EXPECT_EQ(a.numerics.rel_tol, b.numerics.rel_tol);
@@ -97,7 +103,9 @@ TEST(Config, RoundTripsThroughYaml)
 {
   SimulationConfig c = loadConfig(YAML::Load(R"(
 cable: {length: 320, segments: 40, c2: 14.5, tangential_drag_model: quadratic}
-environment: {current: [0.3, -0.2, 0.0]}
+environment:
+  current: [0.3, -0.2, 0.0]
+  current_profile: [{depth: 0, velocity: [0, 0, 0]}, {depth: 150, velocity: [0, 0.6, 0]}]
 numerics: {stepper: rk4, fixed_step: 0.02}
 vehicle:
   inertia: {xx: 3, yy: 50, zz: 55, xz: 1.5}

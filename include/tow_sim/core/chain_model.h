@@ -41,6 +41,8 @@ public:
 
   // The uniform current may change while running (validated like the rest).
   void setCurrent(const Eigen::Vector3d& current_W);
+  // So may the current profile (depth -> current, added to the uniform current; empty: none).
+  void setCurrentProfile(const std::vector<CurrentSample>& profile);
 
   // Newton-Euler description of element e at time t [s] and the given kinematics.
   void elementDynamics(int e, double t, const ElementKinematics& k, BodyDynamics& out) const

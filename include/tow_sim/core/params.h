@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace tow_sim
 {
@@ -16,11 +17,32 @@ enum class TangentialDragModel
   kQuadratic  // -C1 d |u.s| (u.s) s
 };
 
+// One point of a current profile: the current at a depth.
+struct CurrentSample
+{
+  double depth = 0.0;                                   // [m] below the surface, 0 .. 12000
+  Eigen::Vector3d velocity_W = Eigen::Vector3d::Zero();  // [m/s] world ENU, each component -20 .. 20
+};
+
 struct Environment
 {
   double gravity = 9.81;                              // [m/s^2] g, 0 .. 100
   double water_density = 1025.0;                      // [kg/m^3] rho, 0 (vacuum) .. 2000
   Eigen::Vector3d current_W = Eigen::Vector3d::Zero();  // [m/s] uniform current, world ENU, |.| <= 20
+  // Depth-dependent part, added to current_W: linear between samples (depths strictly increasing),
+  // the end values beyond them, nothing when empty. At most 10000 samples.
+  std::vector<CurrentSample> current_profile;
+
+  // [m/s] the current at height z_W [m] (world, z up; depth = -z).
+  Eigen::Vector3d currentAt(double z_W) const
+  {
+    if (current_profile.empty())
+      return current_W;
+    return current_W + profileAt(-z_W);
+  }
+
+private:
+  Eigen::Vector3d profileAt(double depth) const;
 };
 
 struct CableParams
