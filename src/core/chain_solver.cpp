@@ -26,6 +26,13 @@ void ChainSolver::solve(double t, const ShipEndState& ship, const Eigen::Ref<con
                         Eigen::Matrix3Xd* tensions)
 {
   const int n = model_.elementCount();
+  if (static_cast<int>(X_.size()) != n)  // the winch re-meshed
+  {
+    X_.resize(n);
+    K_.resize(n);
+    y_.resize(n);
+    k_.resize(n);
+  }
   const Eigen::Matrix3d I3 = Eigen::Matrix3d::Identity();
   BodyDynamics body;
   Eigen::Matrix3d K_aft = Eigen::Matrix3d::Zero();  // nothing pulls on the end body's tail point
@@ -59,7 +66,11 @@ void ChainSolver::solve(double t, const ShipEndState& ship, const Eigen::Ref<con
     // M_aa + K_aft may be singular along s (an end body with its CG at the bail has no inertia at its
     // tail joint along its axis), so solve with A = M_aa + K_aft + kappa s s^T, which is regular, and
     // mu' = mu + kappa s.a_a in place of mu: exact, since s.a_a is fixed by the constraint.
-    const double c0 = -(k.v_a - k.v_f).squaredNorm() / k.length;
+    // The first segment may change length at the winch: |x_a - x_f| = L(t) gives
+    // s.(a_a - a_f) = (L'^2 + L L'' - |v_a - v_f|^2) / L.
+    double c0 = -(k.v_a - k.v_f).squaredNorm() / k.length;
+    if (e == 0)
+      c0 += model_.firstRate() * model_.firstRate() / k.length + model_.firstAcceleration();
     Eigen::Matrix3d A = M_aa + K_aft;
     const double kappa = A.trace() / 3.0;
     A += kappa * k.s * k.s.transpose();

@@ -126,4 +126,24 @@ void validate(const NumericsParams& n, const std::string& p)
   requireInRange(p + ".tangential_smoothing_speed", n.tangential_smoothing_speed, 0.0, 1.0, "[m/s]", true);
 }
 
+void validate(const WinchParams& w, const CableParams& c, const std::string& p)
+{
+  requireInRange(p + ".segment_min_fraction", w.segment_min_fraction, 0.1, 1.0, "[-]");
+  if (w.segment_min_fraction >= 1.0)
+    requireInRange(p + ".segment_min_fraction", w.segment_min_fraction, 0.1, 0.999999, "[-] (below 1)");
+  requireInRange(p + ".segment_max_fraction", w.segment_max_fraction, w.segment_min_fraction + 1.0, 10.0,
+                 "[-] (at least segment_min_fraction + 1, so a split leaves both parts in the band)");
+  const double d = c.segmentLength();
+  requireInRange(p + ".min_length", w.min_length, w.segment_min_fraction * d, 1e5,
+                 "[m] (at least segment_min_fraction * cable.length / cable.segments)");
+  requireInRange(p + ".max_length", w.max_length, w.min_length, 1e5, "[m] (at least min_length)");
+  requireInRange(p + ".max_rate", w.max_rate, 0.0, 20.0, "[m/s]", true);
+  requireInRange(p + ".max_acceleration", w.max_acceleration, 0.0, 100.0, "[m/s^2]", true);
+  requireInRange(p + ".response_time", w.response_time, 0.01, 100.0, "[s]");
+  const std::string root = p.size() >= 5 && p.compare(p.size() - 5, 5, "winch") == 0 ? p.substr(0, p.size() - 5) : "";
+  if (w.enabled)
+    requireInRange(root + "cable.length", c.length, w.min_length, w.max_length,
+                   "[m] (within winch.min_length .. winch.max_length)");
+}
+
 }  // namespace tow_sim

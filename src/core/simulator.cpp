@@ -75,17 +75,117 @@ Diversion lateralDiversion(const Eigen::Vector3d& p_W, const Eigen::Vector3d& v_
   return d;
 }
 
-Simulator::Simulator(std::shared_ptr<ChainModel> model, ShipMotion ship)
-  : model_(std::move(model)), ship_(std::move(ship)), solver_(*model_)
+Simulator::Simulator(std::shared_ptr<ChainModel> model, ShipMotion ship, const WinchParams& winch)
+  : model_(std::move(model)), ship_(std::move(ship)), solver_(*model_), winch_(winch)
 {
   if (!ship_)
     throw std::invalid_argument("Simulator: no ship motion given");
+  validate(winch_, model_->cable());
   const int n = model_->jointCount();
-  y_.assign(6 * n, 0.0);
-  dydt_.assign(6 * n, 0.0);
+  y_.assign(6 * n + 2, 0.0);
+  dydt_.assign(6 * n + 2, 0.0);
+  y_[6 * n] = model_->cableLength();
   tensions_.setZero(3, n);
   accelerations_.setZero(3, n);
   dt_ = std::min(model_->numerics().max_step, 0.01);
+}
+
+double Simulator::setWinchCommand(double payout_rate)
+{
+  if (!winch_.enabled)
+    throw std::invalid_argument("winch command: the winch is disabled (winch.enabled: false)");
+  if (!std::isfinite(payout_rate))
+    throw std::invalid_argument("winch command: the payout rate must be a finite number [m/s]");
+  winch_command_ = std::clamp(payout_rate, -winch_.max_rate, winch_.max_rate);
+  return winch_command_;
+}
+
+double Simulator::cableLength() const { return y_[6 * model_->jointCount()]; }
+double Simulator::payoutRate() const { return y_[6 * model_->jointCount() + 1]; }
+
+double Simulator::winchAcceleration(double length, double rate) const
+{
+  if (!winch_.enabled)
+    return 0.0;
+  // Target rate: the command within the rate limit, slowing before each length limit so that the
+  // lagged rate never carries the cable past it: no faster than a stop at half the deceleration limit
+  // allows (room for the lag), and near the limit proportional to the distance left with gain
+  // 1/(4 tau), which makes the last approach critically damped: the length creeps up to the limit
+  // without crossing it and the acceleration stays within its limit.
+  const double a = winch_.max_acceleration, tau = winch_.response_time;
+  const double k = 0.25 / tau;
+  const double to_max = std::max(0.0, winch_.max_length - length), to_min = std::max(0.0, length - winch_.min_length);
+  double target = std::clamp(winch_command_, -winch_.max_rate, winch_.max_rate);
+  target = std::min({ target, std::sqrt(a * to_max), k * to_max });
+  target = std::max({ target, -std::sqrt(a * to_min), -k * to_min });
+  return std::clamp((target - rate) / tau, -a, a);
+}
+
+void Simulator::syncWinch(const StateVector& y)
+{
+  if (!winch_.enabled)
+    return;
+  const int n = model_->jointCount();
+  const double length = y[6 * n], rate = y[6 * n + 1];
+  const double first = length - (model_->segments() - 1) * model_->nominalSegmentLength();
+  model_->setFirstSegment(std::max(first, 1e-9), rate, winchAcceleration(length, rate));
+}
+
+bool Simulator::remesh(double t)
+{
+  if (!winch_.enabled)
+    return false;
+  const double d = model_->nominalSegmentLength();
+  bool changed = false;
+  for (;;)
+  {
+    const int n = model_->jointCount();
+    const int nu = model_->segments();
+    const double length = y_[6 * n], rate = y_[6 * n + 1];
+    const double first = length - (nu - 1) * d;
+    Eigen::Map<Eigen::Matrix3Xd> x(y_.data(), 3, n), v(y_.data() + 3 * n, 3, n);
+    const ShipEndState ship = ship_(t);
+    StateVector next;
+    if (first > winch_.segment_max_fraction * d)
+    {
+      // Split: a new joint on the first segment, d from its aft end. It moves as a point of the rigid
+      // segment across the flow and with the aft joint along it (that part keeps its length d).
+      const Eigen::Vector3d axis = x.col(0) - ship.p_W;
+      const Eigen::Vector3d s = axis.normalized();
+      const double eta = (first - d) / first;
+      const Eigen::Vector3d p = ship.p_W + eta * axis;
+      Eigen::Vector3d w = ship.v_W + eta * (v.col(0) - ship.v_W);
+      w += s.dot(v.col(0) - w) * s;
+      next.resize(6 * (n + 1) + 2);
+      Eigen::Map<Eigen::Matrix3Xd> nx(next.data(), 3, n + 1), nv(next.data() + 3 * (n + 1), 3, n + 1);
+      nx.col(0) = p;
+      nv.col(0) = w;
+      nx.rightCols(n) = x;
+      nv.rightCols(n) = v;
+      model_->setLayout(nu + 1, first - d);
+    }
+    else if (first < winch_.segment_min_fraction * d && nu >= 2)
+    {
+      // Merge the first segment into the second: drop joint x_2. The new first segment runs straight
+      // from the tow point to x_3; its length is the sum, so mass is kept; the projection then
+      // restores that length (a shift of second order in the kink at x_2).
+      next.resize(6 * (n - 1) + 2);
+      Eigen::Map<Eigen::Matrix3Xd> nx(next.data(), 3, n - 1), nv(next.data() + 3 * (n - 1), 3, n - 1);
+      nx = x.rightCols(n - 1);
+      nv = v.rightCols(n - 1);
+      model_->setLayout(nu - 1, first + d);
+    }
+    else
+    {
+      return changed;
+    }
+    const int m = model_->jointCount();
+    next[6 * m] = length;
+    next[6 * m + 1] = rate;
+    y_.swap(next);
+    dydt_.assign(y_.size(), 0.0);
+    changed = true;
+  }
 }
 
 void Simulator::reset(double t, const ChainState& state)
@@ -101,6 +201,8 @@ void Simulator::reset(double t, const ChainState& state)
   if (!std::isfinite(t) || !state.x.allFinite() || !state.v.allFinite())
     throw std::invalid_argument("initial state: time, positions and velocities must be finite");
   t_ = t;
+  y_.resize(6 * n + 2);
+  dydt_.resize(6 * n + 2);
   std::copy(state.x.data(), state.x.data() + 3 * n, y_.begin());
   std::copy(state.v.data(), state.v.data() + 3 * n, y_.begin() + 3 * n);
   project(t_);
@@ -116,17 +218,26 @@ void Simulator::rhs(const StateVector& y, StateVector& dydt, double t)
   Eigen::Map<Eigen::Matrix3Xd> x_dot(dydt.data(), 3, n);
   Eigen::Map<Eigen::Matrix3Xd> a(dydt.data() + 3 * n, 3, n);
   x_dot = v;
+  syncWinch(y);
   solver_.solve(t, ship_(t), x, v, a);
+  dydt[6 * n] = winch_.enabled ? y[6 * n + 1] : 0.0;
+  dydt[6 * n + 1] = winch_.enabled ? model_->firstAcceleration() : 0.0;
 }
 
 void Simulator::refreshOutputs()
 {
   const int n = model_->jointCount();
+  syncWinch(y_);
+  tensions_.resize(3, n);
+  accelerations_.resize(3, n);
+  dydt_.resize(6 * n + 2);
   Eigen::Map<const Eigen::Matrix3Xd> x(y_.data(), 3, n);
   Eigen::Map<const Eigen::Matrix3Xd> v(y_.data() + 3 * n, 3, n);
   solver_.solve(t_, ship_(t_), x, v, accelerations_, &tensions_);
   Eigen::Map<Eigen::Matrix3Xd>(dydt_.data(), 3, n) = v;
   Eigen::Map<Eigen::Matrix3Xd>(dydt_.data() + 3 * n, 3, n) = accelerations_;
+  dydt_[6 * n] = winch_.enabled ? y_[6 * n + 1] : 0.0;
+  dydt_[6 * n + 1] = winch_.enabled ? model_->firstAcceleration() : 0.0;
 }
 
 void Simulator::project(double t)
@@ -134,6 +245,19 @@ void Simulator::project(double t)
   // Sequentially from the ship: restore each element's length along its current direction, then
   // remove the relative velocity along the element (s.(v_a - v_f) = 0).
   const int n = model_->jointCount();
+  if (winch_.enabled)
+  {
+    // The winch stops at its limits (its rate law brakes toward them; this removes the last overshoot).
+    double& length = y_[6 * n];
+    double& rate = y_[6 * n + 1];
+    if (length >= winch_.max_length)
+      rate = std::min(rate, 0.0);
+    if (length <= winch_.min_length)
+      rate = std::max(rate, 0.0);
+    length = std::clamp(length, winch_.min_length, winch_.max_length);
+    rate = std::clamp(rate, -winch_.max_rate, winch_.max_rate);
+  }
+  syncWinch(y_);
   Eigen::Map<Eigen::Matrix3Xd> x(y_.data(), 3, n);
   Eigen::Map<Eigen::Matrix3Xd> v(y_.data() + 3 * n, 3, n);
   const ShipEndState ship = ship_(t);
@@ -143,7 +267,9 @@ void Simulator::project(double t)
   {
     const Eigen::Vector3d s = (x.col(e) - x_f).normalized();
     x.col(e) = x_f + model_->elementLength(e) * s;
-    v.col(e) -= s.dot(v.col(e) - v_f) * s;
+    // Relative velocity along the element: none, but the winch's rate on the first segment.
+    const double along = e == 0 ? model_->firstRate() : 0.0;
+    v.col(e) -= (s.dot(v.col(e) - v_f) - along) * s;
     x_f = x.col(e);
     v_f = v.col(e);
   }
@@ -224,7 +350,14 @@ StepReport Simulator::advanceTo(double t_end)
                                       : "integration diverged: non-finite state at t = " + std::to_string(t_) + " s");
     }
     ++report.steps;
+    syncWinch(y_);
     report.max_length_error = std::max(report.max_length_error, lengthErrorOf(y_, t_));
+    if (remesh(t_))
+    {
+      // New state size: fresh steppers (odeint sizes its buffers once).
+      controlled = odeint::make_controlled(num.abs_tol, num.rel_tol, odeint::runge_kutta_dopri5<StateVector>());
+      rk4 = odeint::runge_kutta4<StateVector>();
+    }
     project(t_);
     refreshOutputs();
   }

@@ -84,6 +84,9 @@ DenseSolution solveDense(const ChainModel& model, double t, const ShipEndState& 
     else
       b(row + 5) += s.dot(ship.a_W);
     b(row + 5) -= (k.v_a - k.v_f).squaredNorm() / l;
+    // A winch changes the first segment's length L(t): d^2/dt^2 |x_a - x_f|^2 / 2 = L'^2 + L L''.
+    if (e == 0)
+      b(row + 5) += (model.firstRate() * model.firstRate() + l * model.firstAcceleration()) / l;
   }
 
   const Eigen::VectorXd z = A.fullPivLu().solve(b);

@@ -65,7 +65,8 @@ std::shared_ptr<Vehicle> makeRandomVehicle(EndKind kind, std::mt19937& rng)
   return vehicle;
 }
 
-RandomCase makeRandomCase(int segments, std::mt19937& rng, EndKind kind = EndKind::kRigid)
+// winch: the first segment is paid out (random length, rate and acceleration) while the rest is not.
+RandomCase makeRandomCase(int segments, std::mt19937& rng, EndKind kind = EndKind::kRigid, bool winch = false)
 {
   std::uniform_real_distribution<double> u(0.0, 1.0);
   CableParams cable;
@@ -95,6 +96,12 @@ RandomCase makeRandomCase(int segments, std::mt19937& rng, EndKind kind = EndKin
   c.ship.p_W = randomVector(rng, 100.0);
   c.ship.v_W = randomVector(rng, 3.0);
   c.ship.a_W = randomVector(rng, 0.5);
+  double payout_rate = 0.0;
+  if (winch)
+  {
+    payout_rate = 4.0 * (u(rng) - 0.5);
+    c.model->setFirstSegment((0.5 + u(rng)) * c.model->nominalSegmentLength(), payout_rate, 2.0 * (u(rng) - 0.5));
+  }
   const int n = c.model->jointCount();
   c.x.resize(3, n);
   c.v.resize(3, n);
@@ -106,6 +113,8 @@ RandomCase makeRandomCase(int segments, std::mt19937& rng, EndKind kind = EndKin
     const double d = c.model->elementLength(e);
     c.x.col(e) = x_f + d * s;
     c.v.col(e) = v_f + d * omega.cross(s);  // consistent with the length constraint
+    if (e == 0)
+      c.v.col(e) += payout_rate * s;         // ... and the winch's rate
     x_f = c.x.col(e);
     v_f = c.v.col(e);
   }
@@ -131,6 +140,24 @@ TEST(SolverVsDense, RandomStatesMatchToOnePartInABillion)
       const test::DenseSolution ref = test::solveDense(*c.model, 0.0, c.ship, c.x, c.v);
       EXPECT_LT(relativeError(a, ref.accelerations), 1e-9) << "nu = " << segments << ", trial " << trial;
       EXPECT_LT(relativeError(tensions, ref.tensions), 1e-9) << "nu = " << segments << ", trial " << trial;
+    }
+  }
+}
+
+TEST(SolverVsDense, WithTheWinchPayingOutTheFirstSegment)
+{
+  std::mt19937 rng(4242);
+  for (EndKind kind : { EndKind::kRigid, EndKind::kVehicleA })
+  {
+    for (int segments = 1; segments <= 20; ++segments)
+    {
+      const RandomCase c = makeRandomCase(segments, rng, kind, true);
+      ChainSolver solver(*c.model);
+      Eigen::Matrix3Xd a(3, c.model->jointCount()), tensions(3, c.model->jointCount());
+      solver.solve(0.2, c.ship, c.x, c.v, a, &tensions);
+      const test::DenseSolution ref = test::solveDense(*c.model, 0.2, c.ship, c.x, c.v);
+      EXPECT_LT(relativeError(a, ref.accelerations), 1e-9) << "nu = " << segments;
+      EXPECT_LT(relativeError(tensions, ref.tensions), 1e-9) << "nu = " << segments;
     }
   }
 }

@@ -27,11 +27,26 @@ public:
   ChainModel(const CableParams& cable, std::shared_ptr<const EndBody> end_body, const Environment& env,
              const NumericsParams& numerics);
 
-  int segments() const { return cable_.segments; }           // nu
-  int elementCount() const { return cable_.segments + 1; }   // nu + 1
-  int jointCount() const { return cable_.segments + 1; }     // unknown joints x_2 .. x_{nu+2}
-  double elementLength(int e) const { return e < segments() ? segment_.length : end_body_->length(); }
-  double totalLength() const { return cable_.length + end_body_->length(); }
+  // The layout may change while running (winch): nu segments, the first (at the ship) of length
+  // firstLength(), the others of the nominal length cable.length / cable.segments.
+  int segments() const { return segments_; }            // nu
+  int elementCount() const { return segments_ + 1; }    // nu + 1
+  int jointCount() const { return segments_ + 1; }      // unknown joints x_2 .. x_{nu+2}
+  double elementLength(int e) const
+  {
+    return e == 0 ? first_.length : (e < segments_ ? segment_.length : end_body_->length());
+  }
+  double nominalSegmentLength() const { return segment_.length; }
+  double cableLength() const { return first_.length + (segments_ - 1) * segment_.length; }  // [m] cable out
+  double totalLength() const { return cableLength() + end_body_->length(); }
+  double firstLength() const { return first_.length; }
+  double firstRate() const { return first_rate_; }    // [m/s] d/dt of the first segment's length
+  double firstAcceleration() const { return first_acceleration_; }  // [m/s^2]
+
+  // Winch: the first segment's length [m] (> 0), its rate [m/s] and acceleration [m/s^2] now; and
+  // re-meshing to nu segments with the given first length. Mass per length stays the cable's.
+  void setFirstSegment(double length, double rate, double acceleration);
+  void setLayout(int segments, double first_length);
 
   const CableParams& cable() const { return cable_; }
   const CableSegmentModel& segment() const { return segment_; }
@@ -47,7 +62,9 @@ public:
   // Newton-Euler description of element e at time t [s] and the given kinematics.
   void elementDynamics(int e, double t, const ElementKinematics& k, BodyDynamics& out) const
   {
-    if (e < segments())
+    if (e == 0 && segments_ > 0)
+      cableSegmentDynamics(first_, k, env_, out);
+    else if (e < segments_)
       cableSegmentDynamics(segment_, k, env_, out);
     else
       end_body_->dynamics(t, k, env_, out);
@@ -55,7 +72,10 @@ public:
 
 private:
   CableParams cable_;
-  CableSegmentModel segment_;
+  CableSegmentModel segment_;  // nominal segment
+  CableSegmentModel first_;    // the first segment, scaled to its length
+  int segments_ = 0;
+  double first_rate_ = 0.0, first_acceleration_ = 0.0;
   std::shared_ptr<const EndBody> end_body_;
   Environment env_;
   NumericsParams numerics_;

@@ -98,11 +98,27 @@ struct NumericsParams
   double tangential_smoothing_speed = 0.01;  // [m/s] Pode drag changes sign smoothly over this |u.s|, > 0 .. 1
 };
 
+// The winch at the tow point (physics: the first segment, at the ship, changes length; segments are
+// split off or merged into it there so that it stays within its band).
+struct WinchParams
+{
+  bool enabled = false;            // off: the cable length is fixed and winch commands are refused
+  double min_length = 50.0;        // [m] least cable out, >= segment_min_fraction * L / nu
+  double max_length = 2000.0;      // [m] most cable out, >= min_length, <= 1e5
+  double max_rate = 2.0;           // [m/s] payout and haul-in rate limit, (0, 20]
+  double max_acceleration = 0.5;   // [m/s^2] limit on the rate's change, (0, 100]
+  double response_time = 1.0;      // [s] the rate follows the command with this lag (then the limits), [0.01, 100]
+  double segment_min_fraction = 0.5;  // [-] the first segment is merged into the next below this * L / nu, [0.1, 1)
+  double segment_max_fraction = 1.5;  // [-] and split above this * L / nu, >= segment_min_fraction + 1, <= 10
+};
+
 // Each throws std::invalid_argument("<prefix>.<name> = <value> is out of range: must be ...").
 void validate(const Environment& env, const std::string& prefix = "environment");
 void validate(const CableParams& cable, const std::string& prefix = "cable");
 void validate(const EndElementParams& end, const std::string& prefix = "end_element");
 void validate(const NumericsParams& numerics, const std::string& prefix = "numerics");
+// Also checks the winch against the cable (its length within the limits, the band against L / nu).
+void validate(const WinchParams& winch, const CableParams& cable, const std::string& prefix = "winch");
 
 // Throws std::invalid_argument unless lo <= value <= hi (or lo < value where lo_open) and finite.
 void requireInRange(const std::string& name, double value, double lo, double hi, const char* unit,

@@ -53,7 +53,8 @@ struct StepReport
 class Simulator
 {
 public:
-  Simulator(std::shared_ptr<ChainModel> model, ShipMotion ship);
+  // The winch (validated against the model's cable) is off by default: the cable length is fixed.
+  Simulator(std::shared_ptr<ChainModel> model, ShipMotion ship, const WinchParams& winch = WinchParams());
 
   // Restart at time t from the given state, projected onto the segment lengths. Throws
   // std::invalid_argument for a wrong size or a non-finite value.
@@ -63,6 +64,16 @@ public:
   // runs away (faster than 200 m/s relative to the tow point) or the step size collapses; the
   // simulator then keeps the last good state.
   StepReport advanceTo(double t_end);
+
+  // Winch: the commanded payout rate [m/s] (positive pays out), saturated at +-max_rate (returned).
+  // Throws std::invalid_argument if it is not finite or the winch is disabled. The rate follows the
+  // command with the winch's response time, within max_acceleration, and slows down so as to stop at
+  // min_length and max_length.
+  double setWinchCommand(double payout_rate);
+  double winchCommand() const { return winch_command_; }
+  double cableLength() const;   // [m] cable out
+  double payoutRate() const;    // [m/s] its rate of change now
+  const WinchParams& winch() const { return winch_; }
 
   double time() const { return t_; }
   ChainState state() const;
@@ -84,6 +95,9 @@ public:
 private:
   using StateVector = std::vector<double>;
   void rhs(const StateVector& y, StateVector& dydt, double t);
+  double winchAcceleration(double length, double rate) const;  // [m/s^2] the winch's rate law
+  void syncWinch(const StateVector& y);  // the model's first segment from the winch entries of y
+  bool remesh(double t);                 // split or merge the first segment; true if the layout changed
   void project(double t);
   void refreshOutputs();
   double lengthErrorOf(const StateVector& y, double t) const;
@@ -94,9 +108,11 @@ private:
   ChainSolver solver_;
   double t_ = 0.0;
   double dt_ = 0.0;  // next adaptive step
-  StateVector y_;    // [x_2..x_{nu+2}, v_2..v_{nu+2}]
+  StateVector y_;    // [x_2..x_{nu+2}, v_2..v_{nu+2}, cable out L_w, payout rate]
   StateVector dydt_;
   Eigen::Matrix3Xd tensions_, accelerations_;
+  WinchParams winch_;
+  double winch_command_ = 0.0;  // [m/s]
 };
 
 }  // namespace tow_sim

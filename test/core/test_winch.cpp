@@ -1,0 +1,238 @@
+// The winch: the first segment changes length at the commanded rate, segments are split off or merged
+// at the ship, and the chain's mass and the rest of its shape are kept. Checked against the equilibrium
+// of the longer cable, against the start (pay out and haul back), against the limits, and against the
+// length constraint before projection (which holds only if the winch's acceleration term is right).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "tow_sim/core/equilibrium.h"
+#include "tow_sim/core/simulator.h"
+#include "tow_sim/core/vehicle.h"
+
+namespace tow_sim
+{
+namespace
+{
+struct Tow
+{
+  std::shared_ptr<Vehicle> vehicle;
+  std::shared_ptr<ChainModel> model;
+  std::unique_ptr<Simulator> sim;
+};
+
+WinchParams testWinch()
+{
+  WinchParams w;
+  w.enabled = true;
+  w.min_length = 100.0;
+  w.max_length = 400.0;
+  w.max_rate = 1.0;
+  w.max_acceleration = 0.2;
+  w.response_time = 1.0;
+  return w;
+}
+
+Tow makeTow(double length, int segments, const Eigen::Vector3d& ship_velocity, const WinchParams& winch)
+{
+  CableParams cable;
+  cable.length = length;
+  cable.segments = segments;
+  Tow tow;
+  tow.vehicle = std::make_shared<Vehicle>(VehicleParams());
+  tow.vehicle->resetActuators(0.0);
+  tow.model = std::make_shared<ChainModel>(cable, tow.vehicle, Environment(), NumericsParams());
+  tow.sim = std::make_unique<Simulator>(tow.model, constantVelocityShip(Eigen::Vector3d::Zero(), ship_velocity),
+                                        winch);
+  const EquilibriumResult eq = steadyTowEquilibrium(*tow.model, 0.0, Eigen::Vector3d::Zero(), ship_velocity);
+  tow.sim->reset(0.0, eq.state);
+  return tow;
+}
+
+double vehicleDepth(const Simulator& sim) { return -sim.jointPositions().rightCols<1>().z(); }
+
+// Sum of the element lengths along the chain, and what the cable's layout says.
+void expectBookkeeping(const Simulator& sim)
+{
+  const ChainModel& m = sim.model();
+  const Eigen::Matrix3Xd p = sim.jointPositions();
+  double along = 0.0;
+  for (int e = 0; e < m.segments(); ++e)
+    along += (p.col(e + 1) - p.col(e)).norm();
+  EXPECT_NEAR(along, sim.cableLength(), 1e-9 * sim.cableLength());
+  EXPECT_NEAR(m.cableLength(), sim.cableLength(), 1e-9 * sim.cableLength());
+  // Mass per length is the cable's: the chain's mass is the cable out times it.
+  double mass = 0.0;
+  for (int e = 0; e < m.segments(); ++e)
+    mass += e == 0 ? m.segment().mass * m.firstLength() / m.nominalSegmentLength() : m.segment().mass;
+  EXPECT_NEAR(mass, m.cable().mass_per_length * sim.cableLength(), 1e-9 * mass);
+  const double d = m.nominalSegmentLength();
+  EXPECT_GE(m.firstLength(), sim.winch().segment_min_fraction * d - 1e-9);
+  EXPECT_LE(m.firstLength(), sim.winch().segment_max_fraction * d + 1e-9);
+}
+
+TEST(Winch, IsOffByDefaultAndValidated)
+{
+  Tow tow = makeTow(300.0, 60, Eigen::Vector3d(2.0, 0.0, 0.0), WinchParams());
+  EXPECT_THROW(tow.sim->setWinchCommand(0.5), std::invalid_argument);
+  WinchParams w = testWinch();
+  w.max_length = 250.0;  // below the cable's 300 m
+  try
+  {
+    Simulator sim(tow.model, constantVelocityShip(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()), w);
+    FAIL() << "a cable longer than winch.max_length accepted";
+  }
+  catch (const std::invalid_argument& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("cable.length = 300"), std::string::npos) << e.what();
+  }
+  w = testWinch();
+  w.segment_max_fraction = 1.2;  // a split would leave a piece below the band
+  EXPECT_THROW(validate(w, tow.model->cable()), std::invalid_argument);
+  w = testWinch();
+  Simulator on(tow.model, constantVelocityShip(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()), w);
+  EXPECT_THROW(on.setWinchCommand(NAN), std::invalid_argument);
+  EXPECT_DOUBLE_EQ(on.setWinchCommand(5.0), 1.0);  // saturated at max_rate
+}
+
+TEST(Winch, LimitsOnRateAccelerationAndLengthHold)
+{
+  WinchParams w = testWinch();
+  w.min_length = 280.0;
+  w.max_length = 320.0;
+  Tow tow = makeTow(300.0, 60, Eigen::Vector3d(2.0, 0.0, 0.0), w);
+  double worst_rate = 0.0, worst_accel = 0.0, longest = 0.0, shortest = 1e9;
+  double previous_rate = tow.sim->payoutRate();
+  const double dt = 0.05;
+  for (int i = 1; i <= 3000; ++i)
+  {
+    // Out to the upper limit and beyond, then in to the lower limit and beyond, commands past the limit.
+    if (i == 1)
+      tow.sim->setWinchCommand(5.0);
+    if (i == 1000)
+      tow.sim->setWinchCommand(-5.0);
+    tow.sim->advanceTo(i * dt);
+    const double rate = tow.sim->payoutRate();
+    worst_rate = std::max(worst_rate, std::abs(rate));
+    worst_accel = std::max(worst_accel, std::abs(rate - previous_rate) / dt);
+    previous_rate = rate;
+    longest = std::max(longest, tow.sim->cableLength());
+    shortest = std::min(shortest, tow.sim->cableLength());
+    if (i % 100 == 0)
+      expectBookkeeping(*tow.sim);
+  }
+  std::printf("winch limits: |rate| <= %.6f m/s (1), |accel| <= %.6f m/s^2 (0.2), length %.6f .. %.6f m "
+              "(280 .. 320), %d segments at the end\n",
+              worst_rate, worst_accel, shortest, longest, tow.model->segments());
+  EXPECT_LE(worst_rate, 1.0 + 1e-9);
+  EXPECT_GT(worst_rate, 0.99);  // it did reach full speed
+  EXPECT_LE(worst_accel, 0.2 * (1.0 + 1e-3));
+  EXPECT_LE(longest, 320.0 + 1e-9);
+  EXPECT_GE(shortest, 280.0 - 1e-9);
+  EXPECT_GT(longest, 319.9);    // it did reach both limits
+  EXPECT_LT(shortest, 280.1);
+}
+
+TEST(Winch, PayingOutDeepensTowardTheLongerCablesEquilibrium)
+{
+  const Eigen::Vector3d u(2.0, 0.0, 0.0);
+  WinchParams w = testWinch();
+  Tow tow = makeTow(300.0, 60, u, w);
+  const double start_depth = vehicleDepth(*tow.sim);
+  // The longer cable's own equilibrium, same segment length.
+  Tow longer = makeTow(400.0, 80, u, WinchParams());
+  const double target_depth = vehicleDepth(*longer.sim);
+
+  tow.sim->setWinchCommand(1.0);  // to max_length = 400 m
+  double previous = start_depth, deepest = start_depth;
+  bool deepening = true;
+  double worst_error = 0.0;
+  for (int i = 1; i <= 150; ++i)
+  {
+    const bool paying_out = tow.sim->payoutRate() > 0.99;  // at full rate
+    const StepReport r = tow.sim->advanceTo(i * 1.0);
+    worst_error = std::max(worst_error, r.max_length_error);
+    // While cable goes out at full rate the vehicle only sinks. (It sinks below the new equilibrium: the cable near
+    // the ship moves slower through the water while it is paid out; then it rises back to it.)
+    if (paying_out && vehicleDepth(*tow.sim) < previous - 1e-6)
+      deepening = false;
+    previous = vehicleDepth(*tow.sim);
+    deepest = std::max(deepest, previous);
+    expectBookkeeping(*tow.sim);
+  }
+  EXPECT_NEAR(tow.sim->cableLength(), 400.0, 1e-3);
+  EXPECT_EQ(tow.model->segments(), 80);
+  tow.sim->advanceTo(1200.0);
+  const double end_depth = vehicleDepth(*tow.sim);
+  std::printf("paying out 100 m at 1 m/s: depth %.2f m -> %.2f m (deepest %.2f m); equilibrium of the 400 m cable "
+              "%.2f m; largest length error before projection %.1e\n",
+              start_depth, end_depth, deepest, target_depth, worst_error);
+  EXPECT_TRUE(deepening);
+  EXPECT_NEAR(end_depth, target_depth, 0.01);
+  EXPECT_GT(target_depth - start_depth, 10.0);  // a real change to follow
+  // The shape, not only the depth: every joint where the longer cable's equilibrium has it.
+  const Eigen::Matrix3Xd a = tow.sim->jointPositions().colwise() - tow.sim->shipEnd().p_W;
+  const Eigen::Matrix3Xd b = longer.sim->jointPositions().colwise() - longer.sim->shipEnd().p_W;
+  ASSERT_EQ(a.cols(), b.cols());
+  EXPECT_LT((a - b).colwise().norm().maxCoeff(), 0.02);
+  // The length constraint holds through the steps by the dynamics, not only by the projection.
+  EXPECT_LT(worst_error, 1e-7);
+}
+
+// Hauling in stops at min_length = the starting 300 m, so the way back ends exactly where it began.
+TEST(Winch, PayingOutAndHaulingBackAtRestReturnsTheSameShape)
+{
+  WinchParams w = testWinch();
+  w.min_length = 300.0;
+  w.max_length = 500.0;
+  Tow tow = makeTow(300.0, 60, Eigen::Vector3d::Zero(), w);  // hanging straight down
+  const Eigen::Matrix3Xd start = tow.sim->jointPositions();
+  tow.sim->setWinchCommand(1.0);
+  tow.sim->advanceTo(55.0);
+  tow.sim->setWinchCommand(0.0);
+  tow.sim->advanceTo(80.0);
+  const double paid = tow.sim->cableLength() - 300.0;
+  const int segments_out = tow.model->segments();
+  tow.sim->setWinchCommand(-1.0);
+  tow.sim->advanceTo(200.0);
+  tow.sim->setWinchCommand(0.0);
+  tow.sim->advanceTo(300.0);
+  const Eigen::Matrix3Xd end = tow.sim->jointPositions();
+  std::printf("at rest: paid out %.2f m (%d segments), hauled back to %.6f m (%d segments); largest joint offset "
+              "from the start %.2e m\n",
+              paid, segments_out, tow.sim->cableLength(), tow.model->segments(),
+              end.cols() == start.cols() ? (end - start).cwiseAbs().maxCoeff() : -1.0);
+  EXPECT_GT(paid, 40.0);
+  EXPECT_GT(segments_out, 67);
+  EXPECT_NEAR(tow.sim->cableLength(), 300.0, 1e-6);
+  ASSERT_EQ(tow.model->segments(), 60);
+  EXPECT_LT((end - start).cwiseAbs().maxCoeff(), 1e-3);
+}
+
+TEST(Winch, PayingOutAndHaulingBackUnderwayReturnsToTheSteadyTow)
+{
+  const Eigen::Vector3d u(2.0, 0.0, 0.0);
+  WinchParams w = testWinch();
+  w.min_length = 300.0;
+  Tow tow = makeTow(300.0, 60, u, w);
+  const Eigen::Matrix3Xd start = tow.sim->jointPositions().colwise() - tow.sim->shipEnd().p_W;
+  tow.sim->setWinchCommand(1.0);
+  tow.sim->advanceTo(60.0);
+  const double depth_out = vehicleDepth(*tow.sim);
+  tow.sim->setWinchCommand(-1.0);
+  tow.sim->advanceTo(200.0);
+  tow.sim->advanceTo(1100.0);
+  const Eigen::Matrix3Xd end = tow.sim->jointPositions().colwise() - tow.sim->shipEnd().p_W;
+  std::printf("underway: depth %.2f m -> %.2f m with 50 m more -> back to %.6f m, %d segments; largest joint offset "
+              "from the start after settling %.2e m\n",
+              -start(2, start.cols() - 1), depth_out, tow.sim->cableLength(), tow.model->segments(),
+              end.cols() == start.cols() ? (end - start).colwise().norm().maxCoeff() : -1.0);
+  EXPECT_GT(depth_out + start(2, start.cols() - 1), 3.0);  // it went deeper on the way out
+  EXPECT_NEAR(tow.sim->cableLength(), 300.0, 1e-6);
+  ASSERT_EQ(end.cols(), start.cols());
+  EXPECT_LT((end - start).colwise().norm().maxCoeff(), 0.01);
+}
+
+}  // namespace
+}  // namespace tow_sim
