@@ -1,5 +1,6 @@
 #include "tow_sim/core/chain_model.h"
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <stdexcept>
 
@@ -33,6 +34,38 @@ void ChainModel::setFirstSegment(double length, double rate, double acceleration
   first_.mass *= scale;
   first_.net_weight *= scale;
   first_.added_mass *= scale;
+}
+
+void ChainModel::elementDynamics(int e, double t, const ElementKinematics& k, BodyDynamics& out,
+                                 bool with_contact) const
+{
+  if (e == 0 && segments_ > 0)
+    cableSegmentDynamics(first_, k, env_, out);
+  else if (e < segments_)
+    cableSegmentDynamics(segment_, k, env_, out);
+  else
+    end_body_->dynamics(t, k, env_, out);
+  const Seabed* bottom = with_contact ? seabed() : nullptr;
+  if (!bottom)
+    return;
+  // Contact forces at points of the element, moved to its CG. A cable segment carries its aft joint
+  // (so each joint x_2 .. x_{nu+1} once, with the stiffness of one segment's length); the end body its
+  // own contact points.
+  const Eigen::Vector3d x_G = k.pointAt(out.cg_fraction);
+  auto add = [&](double eta, double stiffness, double damping) {
+    const Eigen::Vector3d p = k.pointAt(eta);
+    const Eigen::Vector3d f = bottom->contactForce(p, k.velocityAt(eta), stiffness, damping);
+    out.wrench.head<3>() += f;
+    out.wrench.tail<3>() += (p - x_G).cross(f);
+  };
+  const SeabedParams& sp = bottom->params();
+  if (e < segments_)
+  {
+    add(1.0, sp.stiffness * elementLength(e), sp.damping * elementLength(e));
+    return;
+  }
+  for (double eta : end_body_->contactFractions())
+    add(eta, sp.vehicle_stiffness, sp.vehicle_damping);
 }
 
 void ChainModel::setLayout(int segments, double first_length)

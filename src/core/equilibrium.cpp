@@ -32,7 +32,7 @@ struct Balance
     const double l = model.elementLength(element);
     const ElementKinematics k = ElementKinematics::fromJoints(x_aft - l * s, x_aft, u, u);
     BodyDynamics body;
-    model.elementDynamics(element, t, k, body);
+    model.elementDynamics(element, t, k, body, false);  // the steady tow clear of the seabed
     const Eigen::Vector3d F = body.wrench.head<3>(), M = body.wrench.tail<3>();
     if (T_fwd)
       *T_fwd = T_aft - F;

@@ -9,6 +9,7 @@
 
 #include "tow_sim/core/element.h"
 #include "tow_sim/core/params.h"
+#include "tow_sim/core/seabed.h"
 
 namespace tow_sim
 {
@@ -59,16 +60,14 @@ public:
   // So may the current profile (depth -> current, added to the uniform current; empty: none).
   void setCurrentProfile(const std::vector<CurrentSample>& profile);
 
-  // Newton-Euler description of element e at time t [s] and the given kinematics.
-  void elementDynamics(int e, double t, const ElementKinematics& k, BodyDynamics& out) const
-  {
-    if (e == 0 && segments_ > 0)
-      cableSegmentDynamics(first_, k, env_, out);
-    else if (e < segments_)
-      cableSegmentDynamics(segment_, k, env_, out);
-    else
-      end_body_->dynamics(t, k, env_, out);
-  }
+  // The seabed (none by default); contact loads join the elements' wrenches.
+  void setSeabed(std::shared_ptr<const Seabed> seabed) { seabed_ = std::move(seabed); }
+  const Seabed* seabed() const { return seabed_ && seabed_->present() ? seabed_.get() : nullptr; }
+
+  // Newton-Euler description of element e at time t [s] and the given kinematics; with_contact false
+  // leaves out the seabed.
+  void elementDynamics(int e, double t, const ElementKinematics& k, BodyDynamics& out,
+                       bool with_contact = true) const;
 
 private:
   CableParams cable_;
@@ -79,6 +78,7 @@ private:
   std::shared_ptr<const EndBody> end_body_;
   Environment env_;
   NumericsParams numerics_;
+  std::shared_ptr<const Seabed> seabed_;
 };
 
 }  // namespace tow_sim

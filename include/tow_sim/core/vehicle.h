@@ -117,6 +117,11 @@ public:
   explicit Vehicle(const VehicleParams& params, const NumericsParams& numerics = NumericsParams());
 
   double length() const override { return p_.tail_from_bail; }
+  // The hull's ends touch the seabed: the nose and the tail point.
+  std::vector<double> contactFractions() const override
+  {
+    return { -p_.nose_from_bail / p_.tail_from_bail, 1.0 };
+  }
   void dynamics(double t, const ElementKinematics& k, const Environment& env, BodyDynamics& out) const override;
 
   // Fin and thrust commands from time t on; values beyond the limits saturate. Returns true when

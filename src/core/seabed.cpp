@@ -1,0 +1,150 @@
+#include "tow_sim/core/seabed.h"
+
+#include "tow_sim/core/params.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <yaml-cpp/yaml.h>
+
+namespace tow_sim
+{
+void validate(const SeabedParams& s, const std::string& p)
+{
+  if (s.type == SeabedParams::Type::kFlat)
+    requireInRange(p + ".depth", s.depth, 0.0, 12000.0, "[m]", true);
+  if (s.type == SeabedParams::Type::kGrid)
+  {
+    const std::string g = s.grid_file.empty() ? p + ".grid" : p + ".grid_file (" + s.grid_file + ")";
+    if (s.grid.depth.rows() < 2 || s.grid.depth.cols() < 2)
+      throw std::invalid_argument(g + ": the depth grid needs at least 2 x 2 points, got " +
+                                  std::to_string(s.grid.depth.rows()) + " x " + std::to_string(s.grid.depth.cols()));
+    for (int i = 0; i < 2; ++i)
+    {
+      requireInRange(g + ".origin[" + std::to_string(i) + "]", s.grid.origin[i], -1e7, 1e7, "[m]");
+      requireInRange(g + ".spacing[" + std::to_string(i) + "]", s.grid.spacing[i], 0.0, 1e5, "[m]", true);
+    }
+    for (int j = 0; j < s.grid.depth.rows(); ++j)
+      for (int i = 0; i < s.grid.depth.cols(); ++i)
+        requireInRange(g + ".depth[" + std::to_string(j) + "][" + std::to_string(i) + "]", s.grid.depth(j, i), 0.0,
+                       12000.0, "[m]");
+  }
+  requireInRange(p + ".stiffness", s.stiffness, 0.0, 1e8, "[N/m per m]", true);
+  requireInRange(p + ".damping", s.damping, 0.0, 1e8, "[N s/m per m]");
+  requireInRange(p + ".vehicle_stiffness", s.vehicle_stiffness, 0.0, 1e9, "[N/m]", true);
+  requireInRange(p + ".vehicle_damping", s.vehicle_damping, 0.0, 1e9, "[N s/m]");
+  requireInRange(p + ".friction", s.friction, 0.0, 5.0, "[-]");
+  requireInRange(p + ".friction_speed", s.friction_speed, 0.0, 10.0, "[m/s]", true);
+}
+
+BathymetryGrid loadBathymetryFile(const std::string& path)
+{
+  try
+  {
+    const YAML::Node root = YAML::LoadFile(path);
+    if (!root.IsMap())
+      throw std::invalid_argument(path + ": must be a mapping with origin, spacing and depth");
+    for (const auto& entry : root)
+    {
+      const std::string key = entry.first.as<std::string>();
+      if (key != "origin" && key != "spacing" && key != "depth")
+        throw std::invalid_argument(path + ": " + key + ": unknown key (known keys: depth, origin, spacing)");
+    }
+    BathymetryGrid g;
+    auto pair = [&](const char* key) {
+      const YAML::Node n = root[key];
+      if (!n || !n.IsSequence() || n.size() != 2)
+        throw std::invalid_argument(path + ": " + key + " must be a list of 2 numbers [m]");
+      return Eigen::Vector2d(n[0].as<double>(), n[1].as<double>());
+    };
+    g.origin = pair("origin");
+    g.spacing = pair("spacing");
+    const YAML::Node rows = root["depth"];
+    if (!rows || !rows.IsSequence() || rows.size() == 0 || !rows[0].IsSequence())
+      throw std::invalid_argument(path + ": depth must be a list of rows (lists of depths [m])");
+    g.depth.resize(rows.size(), rows[0].size());
+    for (std::size_t j = 0; j < rows.size(); ++j)
+    {
+      if (!rows[j].IsSequence() || rows[j].size() != rows[0].size())
+        throw std::invalid_argument(path + ": depth[" + std::to_string(j) + "] must be a list of " +
+                                    std::to_string(rows[0].size()) + " depths, like depth[0]");
+      for (std::size_t i = 0; i < rows[j].size(); ++i)
+        g.depth(j, i) = rows[j][i].as<double>();
+    }
+    return g;
+  }
+  catch (const YAML::Exception& e)
+  {
+    throw std::invalid_argument(path + ": cannot read the bathymetry grid: " + e.what());
+  }
+}
+
+Seabed::Seabed(const SeabedParams& params) : p_(params) { validate(p_); }
+
+namespace
+{
+// Bilinear interpolation and its gradient on the grid, clamped at the edges.
+double gridDepth(const BathymetryGrid& g, double x, double y, Eigen::Vector2d* gradient)
+{
+  const int nx = static_cast<int>(g.depth.cols()), ny = static_cast<int>(g.depth.rows());
+  const double u = std::clamp((x - g.origin.x()) / g.spacing.x(), 0.0, nx - 1.0);
+  const double w = std::clamp((y - g.origin.y()) / g.spacing.y(), 0.0, ny - 1.0);
+  const int i = std::min(static_cast<int>(u), nx - 2), j = std::min(static_cast<int>(w), ny - 2);
+  const double fu = u - i, fw = w - j;
+  const double d00 = g.depth(j, i), d01 = g.depth(j, i + 1), d10 = g.depth(j + 1, i), d11 = g.depth(j + 1, i + 1);
+  if (gradient)
+  {
+    const bool inside_x = x > g.origin.x() && x < g.origin.x() + (nx - 1) * g.spacing.x();
+    const bool inside_y = y > g.origin.y() && y < g.origin.y() + (ny - 1) * g.spacing.y();
+    (*gradient).x() = inside_x ? ((1 - fw) * (d01 - d00) + fw * (d11 - d10)) / g.spacing.x() : 0.0;
+    (*gradient).y() = inside_y ? ((1 - fu) * (d10 - d00) + fu * (d11 - d01)) / g.spacing.y() : 0.0;
+  }
+  return (1 - fw) * ((1 - fu) * d00 + fu * d01) + fw * ((1 - fu) * d10 + fu * d11);
+}
+}  // namespace
+
+double Seabed::bottomZ(double x, double y) const
+{
+  switch (p_.type)
+  {
+    case SeabedParams::Type::kFlat:
+      return -p_.depth;
+    case SeabedParams::Type::kGrid:
+      return -gridDepth(p_.grid, x, y, nullptr);
+    default:
+      return -std::numeric_limits<double>::infinity();
+  }
+}
+
+Eigen::Vector3d Seabed::normal(double x, double y) const
+{
+  if (p_.type != SeabedParams::Type::kGrid)
+    return Eigen::Vector3d::UnitZ();
+  Eigen::Vector2d grad_depth;
+  gridDepth(p_.grid, x, y, &grad_depth);
+  // The bottom is z = -depth(x, y): its upward normal is (d depth/dx, d depth/dy, 1), normalised.
+  return Eigen::Vector3d(grad_depth.x(), grad_depth.y(), 1.0).normalized();
+}
+
+Eigen::Vector3d Seabed::contactForce(const Eigen::Vector3d& p_W, const Eigen::Vector3d& v_W, double stiffness,
+                                     double damping) const
+{
+  if (p_.type == SeabedParams::Type::kNone)
+    return Eigen::Vector3d::Zero();
+  const double below = -altitude(p_W);
+  if (below <= 0.0)
+    return Eigen::Vector3d::Zero();
+  const Eigen::Vector3d n = normal(p_W.x(), p_W.y());
+  const double penetration = below * n.z();  // along the normal
+  const double normal_speed = v_W.dot(n);
+  const double push = std::max(0.0, stiffness * penetration - damping * normal_speed);
+  const Eigen::Vector3d slide = v_W - normal_speed * n;
+  const double speed = slide.norm();
+  Eigen::Vector3d f = push * n;
+  if (speed > 0.0)
+    f -= p_.friction * push * slide / std::sqrt(speed * speed + p_.friction_speed * p_.friction_speed);
+  return f;
+}
+
+}  // namespace tow_sim

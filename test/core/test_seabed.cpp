@@ -1,0 +1,171 @@
+// The seabed: the grid interpolates and tilts its normal as the slope says; contact pushes out and never
+// pulls, friction stays within mu N; a cable laid on the bottom at rest carries no tension gradient
+// where it lies and sinks in by w/k; a vehicle towed into a rising slope is lifted over it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "core/chain_fixtures.h"
+#include "tow_sim/core/equilibrium.h"
+#include "tow_sim/core/seabed.h"
+#include "tow_sim/core/vehicle.h"
+
+namespace tow_sim
+{
+namespace
+{
+// Uniform across y; depth(x) from a list at spacing dx starting at x0.
+SeabedParams ridge(double x0, double dx, const std::vector<double>& depths)
+{
+  SeabedParams p;
+  p.type = SeabedParams::Type::kGrid;
+  p.grid.origin = Eigen::Vector2d(x0, -5000.0);
+  p.grid.spacing = Eigen::Vector2d(dx, 10000.0);
+  p.grid.depth.resize(2, depths.size());
+  for (std::size_t i = 0; i < depths.size(); ++i)
+    p.grid.depth(0, i) = p.grid.depth(1, i) = depths[i];
+  return p;
+}
+
+TEST(Seabed, GridInterpolatesAndTiltsItsNormalWithTheSlope)
+{
+  const Seabed bottom(ridge(0.0, 100.0, { 100.0, 100.0, 80.0, 80.0 }));
+  EXPECT_DOUBLE_EQ(bottom.bottomZ(50.0, 3.0), -100.0);
+  EXPECT_DOUBLE_EQ(bottom.bottomZ(150.0, -7.0), -90.0);   // halfway up the slope
+  EXPECT_DOUBLE_EQ(bottom.bottomZ(-500.0, 0.0), -100.0);  // beyond the grid: its edge
+  EXPECT_DOUBLE_EQ(bottom.bottomZ(900.0, 0.0), -80.0);
+  // Rising 20 m over 100 m toward +x: the normal leans back toward -x by atan(0.2).
+  const Eigen::Vector3d n = bottom.normal(150.0, 0.0);
+  EXPECT_NEAR(std::atan2(-n.x(), n.z()), std::atan(0.2), 1e-12);
+  EXPECT_NEAR(n.y(), 0.0, 1e-15);
+  EXPECT_TRUE(bottom.normal(50.0, 0.0).isApprox(Eigen::Vector3d::UnitZ()));
+}
+
+TEST(Seabed, ContactPushesOutNeverPullsAndFrictionStaysWithinMuN)
+{
+  SeabedParams p;
+  p.type = SeabedParams::Type::kFlat;
+  p.depth = 50.0;
+  p.friction = 0.4;
+  const Seabed bottom(p);
+  EXPECT_EQ(bottom.contactForce(Eigen::Vector3d(0, 0, -49.0), Eigen::Vector3d(0, 0, -1), 1e4, 100).norm(), 0.0);
+  // 1 cm in, at rest: k x up.
+  const Eigen::Vector3d f = bottom.contactForce(Eigen::Vector3d(0, 0, -50.01), Eigen::Vector3d::Zero(), 1e4, 100);
+  EXPECT_TRUE(f.isApprox(Eigen::Vector3d(0, 0, 100.0)));
+  // Leaving fast: the damping would pull; the contact does not.
+  EXPECT_EQ(bottom.contactForce(Eigen::Vector3d(0, 0, -50.01), Eigen::Vector3d(0, 0, 5.0), 1e4, 100).norm(), 0.0);
+  // Sliding: friction against the motion, below mu N, near it when fast.
+  const Eigen::Vector3d g = bottom.contactForce(Eigen::Vector3d(0, 0, -50.01), Eigen::Vector3d(3.0, 0, 0), 1e4, 100);
+  EXPECT_LT(g.x(), 0.0);
+  EXPECT_LE(-g.x(), 0.4 * g.z());
+  EXPECT_GT(-g.x(), 0.39 * g.z());
+  SeabedParams bad = p;
+  bad.stiffness = -1.0;
+  try
+  {
+    validate(bad);
+    FAIL() << "negative stiffness accepted";
+  }
+  catch (const std::invalid_argument& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("seabed.stiffness = -1"), std::string::npos) << e.what();
+  }
+}
+
+// Ship stopped, 250 m of cable in 100 m of water: 20 segments hang, 30 lie along the bottom. At rest
+// the bottom carries the lying part: its tension does not change along it, while the hanging part's
+// tension grows by the weight in water of each segment; each lying joint sinks in by (w - b)/k.
+TEST(Seabed, CableLaidOnTheBottomAtRestHasNoTensionGradientWhereItLies)
+{
+  CableParams cable;
+  cable.length = 250.0;
+  cable.segments = 50;
+  const EndElementParams end = test::endLikeSegment(cable);
+  const Environment env;
+  auto model = test::makeModel(cable, end, env);
+  SeabedParams sp;
+  sp.type = SeabedParams::Type::kFlat;
+  sp.depth = 100.0;
+  sp.vehicle_stiffness = sp.stiffness * cable.segmentLength();  // the end element is one more segment
+  sp.vehicle_damping = sp.damping * cable.segmentLength();
+  model->setSeabed(std::make_shared<Seabed>(sp));
+  const double d = cable.segmentLength();
+  ChainState start;
+  start.x.resize(3, 51);
+  start.v.setZero(3, 51);
+  for (int j = 0; j < 51; ++j)  // joint j + 2 of the report
+    start.x.col(j) = j < 20 ? Eigen::Vector3d(0.0, 0.0, -(j + 1) * d) : Eigen::Vector3d((j - 19) * d, 0.0, -100.0);
+  Simulator sim(model, constantVelocityShip(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()));
+  sim.reset(0.0, start);
+  sim.advanceTo(600.0);
+
+  const double w = model->segment().net_weight / d;  // [N/m] weight in water
+  const Eigen::Matrix3Xd p = sim.jointPositions();
+  Eigen::VectorXd T(51);
+  for (int e = 0; e <= 50; ++e)
+    T(e) = sim.tensions().col(e).norm();
+  double worst_lying_gradient = 0.0, worst_hanging = 0.0, worst_sink = 0.0;
+  int lying = 0;
+  for (int j = 22; j <= 48; ++j)  // joints x_{j+1} resting on the bottom, away from touchdown and the end
+  {
+    ASSERT_LT(std::abs(p(2, j) + 100.0), 0.01) << "joint " << j + 1 << " is not on the bottom";
+    ++lying;
+    worst_lying_gradient = std::max(worst_lying_gradient, std::abs(T(j) - T(j - 1)) / d);
+    worst_sink = std::max(worst_sink, std::abs((-100.0 - p(2, j)) - w / sp.stiffness));
+  }
+  for (int e = 1; e < 18; ++e)  // hanging segments
+    worst_hanging = std::max(worst_hanging, std::abs((T(e - 1) - T(e)) / d - w));
+  std::printf("laid cable: w = %.3f N/m; %d lying joints: |dT/ds| <= %.2e N/m, sink-in w/k = %.3e m (off by at most "
+              "%.1e m); hanging part dT/ds off w by at most %.2e N/m; tension at the ship %.1f N\n",
+              w, lying, worst_lying_gradient, w / sp.stiffness, worst_sink, worst_hanging, T(0));
+  EXPECT_LT(worst_lying_gradient, 1e-3 * w);
+  EXPECT_LT(worst_hanging, 1e-3 * w);
+  EXPECT_LT(worst_sink, 0.01 * w / sp.stiffness);
+}
+
+// A 300 m tow at 2 m/s over 125 m of water that shoals to 70 m between x = 400 and 900 m.
+TEST(Seabed, VehicleTowedIntoARisingSlopeIsLiftedNotPushedThrough)
+{
+  CableParams cable;
+  cable.length = 300.0;
+  cable.segments = 60;
+  auto vehicle = std::make_shared<Vehicle>(VehicleParams());
+  vehicle->resetActuators(0.0);
+  auto model = std::make_shared<ChainModel>(cable, vehicle, Environment(), NumericsParams());
+  const Eigen::Vector3d u(2.0, 0.0, 0.0);
+  const EquilibriumResult eq = steadyTowEquilibrium(*model, 0.0, Eigen::Vector3d::Zero(), u);
+  std::vector<double> depths;
+  for (double x = -1000.0; x <= 3000.0; x += 100.0)
+    depths.push_back(x <= 400.0 ? 125.0 : (x >= 900.0 ? 70.0 : 125.0 - 55.0 * (x - 400.0) / 500.0));
+  model->setSeabed(std::make_shared<Seabed>(ridge(-1000.0, 100.0, depths)));
+  const Seabed& bottom = *model->seabed();
+  Simulator sim(model, constantVelocityShip(Eigen::Vector3d::Zero(), u));
+  sim.reset(0.0, eq.state);
+  const double start_depth = -sim.jointPositions().rightCols<1>().z();
+
+  const double nose = -VehicleParams().nose_from_bail / VehicleParams().tail_from_bail;
+  double lowest_hull = 1e9, lowest_joint = 1e9;
+  for (int i = 1; i <= 800; ++i)
+  {
+    sim.advanceTo(i * 1.0);
+    const ElementKinematics k = sim.elementKinematics(model->segments());
+    lowest_hull = std::min({ lowest_hull, bottom.altitude(k.pointAt(nose)), bottom.altitude(k.pointAt(1.0)) });
+    const Eigen::Matrix3Xd p = sim.jointPositions();
+    for (int j = 1; j < p.cols(); ++j)
+      lowest_joint = std::min(lowest_joint, bottom.altitude(p.col(j)));
+  }
+  const ElementKinematics k = sim.elementKinematics(model->segments());
+  const Eigen::Vector3d cg = k.pointAt(VehicleParams().cg_from_bail / VehicleParams().tail_from_bail);
+  std::printf("slope: vehicle from %.1f m deep (bottom 125 m) to %.1f m at x = %.0f m (bottom %.1f m); lowest hull "
+              "end %.3f m, lowest joint %.3f m above the bottom\n",
+              start_depth, -cg.z(), cg.x(), -bottom.bottomZ(cg.x(), cg.y()), lowest_hull, lowest_joint);
+  EXPECT_GT(cg.x(), 1000.0);                     // past the slope, on the 70 m plateau
+  EXPECT_LT(-cg.z(), 70.1);                      // lifted onto it (riding on its hull ends)
+  EXPECT_GT(lowest_hull, -0.1);                  // not pushed through: at most a penalty's centimetres in
+  EXPECT_GT(lowest_joint, -0.1);
+  EXPECT_LT(lowest_hull, 0.5);                   // it did touch
+}
+
+}  // namespace
+}  // namespace tow_sim
