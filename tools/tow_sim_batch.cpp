@@ -101,7 +101,10 @@ int main(int argc, char** argv)
     vehicle->resetActuators(0.0);
     auto model = std::make_shared<ChainModel>(sc.config.cable, vehicle, sc.config.environment, sc.config.numerics);
     const ShipPath path = buildShipPath(sc);
-    Simulator sim(model, [&path](double t) { return path.tow_point(t); });
+    std::shared_ptr<const Seabed> seabed;
+    if (sc.config.seabed.type != SeabedParams::Type::kNone)
+      model->setSeabed(seabed = std::make_shared<Seabed>(sc.config.seabed));
+    Simulator sim(model, [&path](double t) { return path.tow_point(t); }, sc.config.winch);
     const ShipEndState ship0 = path.tow_point(0.0);
     const Eigen::Matrix3d R0 = Eigen::AngleAxisd(sc.start_heading, Eigen::Vector3d::UnitZ()).toRotationMatrix();
     size_t next_command = 0;
@@ -109,27 +112,30 @@ int main(int argc, char** argv)
     {
       const CommandEvent& c = sc.commands[next_command++];
       vehicle->command(0.0, c.rudder, c.elevator, c.thrust);
+      if (sc.config.winch.enabled)
+        sim.setWinchCommand(c.payout_rate);
     }
+    ChainState start;
     if (sc.start == Scenario::Start::kEquilibrium)
-      sim.reset(0.0, steadyTowEquilibrium(*model, 0.0, ship0.p_W, ship0.v_W).state);
+      start = steadyTowEquilibrium(*model, 0.0, ship0.p_W, ship0.v_W).state;
     else if (sc.start == Scenario::Start::kLine)
-      sim.reset(0.0, straightChain(*model, ship0.p_W, R0 * sc.line_direction_S, ship0.v_W));
+      start = straightChain(*model, ship0.p_W, R0 * sc.line_direction_S, ship0.v_W);
     else
     {
-      ChainState s;
-      s.x = sc.points;
-      s.v = sc.points;
-      s.v.colwise() = ship0.v_W;
-      sim.reset(0.0, s);
+      start.x = sc.points;
+      start.v = sc.points;
+      start.v.colwise() = ship0.v_W;
     }
+    if (seabed)
+      liftAboveSeabed(*seabed, start);  // the equilibrium and the line know nothing of the bottom
+    sim.reset(0.0, start);
 
     series << "t,ship_x,ship_y,ship_z,ship_speed,vehicle_x,vehicle_y,vehicle_z,vehicle_roll,vehicle_pitch,"
               "vehicle_yaw,depth,layback,diversion,diversion_rate,tension_ship,tension_vehicle,rudder,elevator,"
-              "thrust,max_length_error\n";
+              "thrust,max_length_error,cable_length,payout_rate,vehicle_altitude,seabed_contacts\n";
     shapes << "t,joint,x,y,z,tension\n";
     series.precision(10);
     shapes.precision(10);
-    const int nu = model->segments();
     AttitudeHold attitude;
     Progress progress(sc.duration);
     double max_length_error = 0.0;
@@ -144,8 +150,11 @@ int main(int argc, char** argv)
         const CommandEvent& c = sc.commands[next_command++];
         max_length_error = std::max(max_length_error, sim.advanceTo(c.t).max_length_error);
         vehicle->command(c.t, c.rudder, c.elevator, c.thrust);
+        if (sc.config.winch.enabled)
+          sim.setWinchCommand(c.payout_rate);
       }
       max_length_error = std::max(max_length_error, sim.advanceTo(t).max_length_error);
+      const int nu = model->segments();  // the winch may have changed it
       const VehicleOutputs o = vehicle->outputs(t, sim.elementKinematics(nu), model->environment());
       const Eigen::Vector3d pose = path.poseAt(t);
       const Eigen::Vector3d heading(std::cos(pose.z()), std::sin(pose.z()), 0.0);
@@ -164,7 +173,15 @@ int main(int argc, char** argv)
              << o.p_cg_W.y() << ',' << o.p_cg_W.z() << ",0," << pitch << ',' << yaw << ',' << o.depth << ','
              << (tow.p_W - o.p_cg_W).dot(heading) << ',' << d.offset << ',' << d.rate << ',' << T.col(0).norm()
              << ',' << T.col(nu).norm() << ',' << o.rudder << ',' << o.elevator << ',' << o.thrust << ','
-             << max_length_error << '\n';
+             << max_length_error << ',' << sim.cableLength() << ',' << sim.payoutRate() << ',';
+      int contacts = 0;
+      if (seabed)
+      {
+        series << seabed->altitude(o.p_cg_W);  // blank without a seabed
+        for (int j = 1; j < joints.cols(); ++j)
+          contacts += seabed->altitude(joints.col(j)) < 0.0 ? 1 : 0;
+      }
+      series << ',' << contacts << '\n';
       max_length_error = 0.0;
       if (i % shapes_every == 0 || i == outputs)
         for (int j = 0; j < joints.cols(); ++j)

@@ -70,6 +70,56 @@ void readNumerics(Section s, NumericsParams& n)
   s.finish();
 }
 
+void readWinch(Section s, WinchParams& w)
+{
+  s.read("enabled", w.enabled);
+  s.read("min_length", w.min_length);
+  s.read("max_length", w.max_length);
+  s.read("max_rate", w.max_rate);
+  s.read("max_acceleration", w.max_acceleration);
+  s.read("response_time", w.response_time);
+  s.read("segment_min_fraction", w.segment_min_fraction);
+  s.read("segment_max_fraction", w.segment_max_fraction);
+  s.finish();
+}
+
+void readSeabed(Section s, SeabedParams& b, const std::string& base_dir)
+{
+  const std::string type = s.text("type", "none");
+  if (type == "none")
+    b.type = SeabedParams::Type::kNone;
+  else if (type == "flat")
+    b.type = SeabedParams::Type::kFlat;
+  else if (type == "grid")
+    b.type = SeabedParams::Type::kGrid;
+  else
+    fail(s.path("type"), "= '" + type + "' must be 'none', 'flat' or 'grid'");
+  s.read("depth", b.depth);
+  b.grid_file = s.text("grid_file", "");
+  s.read("stiffness", b.stiffness);
+  s.read("damping", b.damping);
+  s.read("vehicle_stiffness", b.vehicle_stiffness);
+  s.read("vehicle_damping", b.vehicle_damping);
+  s.read("friction", b.friction);
+  s.read("friction_speed", b.friction_speed);
+  s.finish();
+  if (b.type == SeabedParams::Type::kGrid)
+  {
+    if (b.grid_file.empty())
+      fail(s.path("grid_file"), "must name a bathymetry file for type 'grid'");
+    const std::string path = b.grid_file[0] == '/' ? b.grid_file : base_dir + b.grid_file;
+    b.grid_file = path;  // as resolved: a configuration written back reads the same grid from anywhere
+    try
+    {
+      b.grid = loadBathymetryFile(path);
+    }
+    catch (const std::invalid_argument& e)
+    {
+      fail(s.path("grid_file"), e.what());
+    }
+  }
+}
+
 AngleTable readTable(Section s, const AngleTable& fallback, bool odd)
 {
   std::vector<double> angles = s.list("angles"), values = s.list("values");
@@ -193,13 +243,19 @@ YAML::Node finsYaml(const FinPairParams& f)
 }
 }  // namespace
 
-SimulationConfig loadConfigUnguarded(const YAML::Node& root, const std::string& prefix);
+SimulationConfig loadConfigUnguarded(const YAML::Node& root, const std::string& prefix, const std::string& base_dir);
 
-SimulationConfig loadConfig(const YAML::Node& root, const std::string& prefix)
+std::string directoryOf(const std::string& path)
+{
+  const std::size_t slash = path.rfind('/');
+  return slash == std::string::npos ? "" : path.substr(0, slash + 1);
+}
+
+SimulationConfig loadConfig(const YAML::Node& root, const std::string& prefix, const std::string& base_dir)
 {
   try
   {
-    return loadConfigUnguarded(root, prefix);
+    return loadConfigUnguarded(root, prefix, base_dir);
   }
   catch (const YAML::Exception& e)  // a shape the checks above did not foresee: still a clear refusal
   {
@@ -207,7 +263,7 @@ SimulationConfig loadConfig(const YAML::Node& root, const std::string& prefix)
   }
 }
 
-SimulationConfig loadConfigUnguarded(const YAML::Node& root, const std::string& prefix)
+SimulationConfig loadConfigUnguarded(const YAML::Node& root, const std::string& prefix, const std::string& base_dir)
 {
   SimulationConfig c;
   if (root && !root.IsNull() && !root.IsMap())
@@ -220,10 +276,14 @@ SimulationConfig loadConfigUnguarded(const YAML::Node& root, const std::string& 
   readEnvironment(section("environment"), c.environment);
   readNumerics(section("numerics"), c.numerics);
   readVehicle(section("vehicle"), c.vehicle);
+  readWinch(section("winch"), c.winch);
+  readSeabed(section("seabed"), c.seabed, base_dir);
   validate(c.cable, prefix + "cable");
   validate(c.environment, prefix + "environment");
   validate(c.numerics, prefix + "numerics");
   validate(c.vehicle, prefix + "vehicle");
+  validate(c.winch, c.cable, prefix + "winch");
+  validate(c.seabed, prefix + "seabed");
   return c;
 }
 
@@ -238,7 +298,7 @@ SimulationConfig loadConfigFile(const std::string& path)
   {
     throw std::invalid_argument(path + ": cannot read the configuration: " + e.what());
   }
-  return loadConfig(root);
+  return loadConfig(root, "", directoryOf(path));
 }
 
 YAML::Node toYaml(const SimulationConfig& c)
@@ -271,6 +331,28 @@ YAML::Node toYaml(const SimulationConfig& c)
     item["velocity"] = std::vector<double>{ sample.velocity_W.x(), sample.velocity_W.y(), sample.velocity_W.z() };
     env["current_profile"].push_back(item);
   }
+
+  YAML::Node winch = root["winch"];
+  winch["enabled"] = c.winch.enabled;
+  winch["min_length"] = c.winch.min_length;
+  winch["max_length"] = c.winch.max_length;
+  winch["max_rate"] = c.winch.max_rate;
+  winch["max_acceleration"] = c.winch.max_acceleration;
+  winch["response_time"] = c.winch.response_time;
+  winch["segment_min_fraction"] = c.winch.segment_min_fraction;
+  winch["segment_max_fraction"] = c.winch.segment_max_fraction;
+
+  YAML::Node bed = root["seabed"];
+  const SeabedParams& b = c.seabed;
+  bed["type"] = b.type == SeabedParams::Type::kNone ? "none" : (b.type == SeabedParams::Type::kFlat ? "flat" : "grid");
+  bed["depth"] = b.depth;
+  bed["grid_file"] = b.grid_file;
+  bed["stiffness"] = b.stiffness;
+  bed["damping"] = b.damping;
+  bed["vehicle_stiffness"] = b.vehicle_stiffness;
+  bed["vehicle_damping"] = b.vehicle_damping;
+  bed["friction"] = b.friction;
+  bed["friction_speed"] = b.friction_speed;
 
   YAML::Node num = root["numerics"];
   num["stepper"] = c.numerics.stepper == StepperType::kDopri5 ? "dopri5" : "rk4";

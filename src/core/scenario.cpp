@@ -78,13 +78,13 @@ Manoeuvre readManoeuvre(Section s, double previous_speed)
 }
 }  // namespace
 
-Scenario loadScenarioUnguarded(const YAML::Node& root);
+Scenario loadScenarioUnguarded(const YAML::Node& root, const std::string& base_dir);
 
-Scenario loadScenario(const YAML::Node& root)
+Scenario loadScenario(const YAML::Node& root, const std::string& base_dir)
 {
   try
   {
-    return loadScenarioUnguarded(root);
+    return loadScenarioUnguarded(root, base_dir);
   }
   catch (const YAML::Exception& e)  // a shape the checks did not foresee: still a clear refusal
   {
@@ -92,12 +92,12 @@ Scenario loadScenario(const YAML::Node& root)
   }
 }
 
-Scenario loadScenarioUnguarded(const YAML::Node& root)
+Scenario loadScenarioUnguarded(const YAML::Node& root, const std::string& base_dir)
 {
   Scenario sc;
-  sc.config = loadConfig(root);
+  sc.config = loadConfig(root, "", base_dir);
   Section top(root, "scenario");
-  for (const char* section : { "cable", "vehicle", "environment", "numerics" })
+  for (const char* section : { "cable", "vehicle", "environment", "numerics", "winch", "seabed" })
     top.has(section);
 
   Section ship = top.child("ship");
@@ -131,7 +131,11 @@ Scenario loadScenarioUnguarded(const YAML::Node& root)
     c.read("rudder", e.rudder);
     c.read("elevator", e.elevator);
     c.read("thrust", e.thrust);
+    c.read("payout_rate", e.payout_rate);
     c.finish();
+    requireInRange(c.path("payout_rate"), e.payout_rate, -20.0, 20.0, "[m/s]");
+    if (e.payout_rate != 0.0 && !sc.config.winch.enabled)
+      fail(c.path("payout_rate"), "needs the winch: winch.enabled is false");
     requireInRange(c.path("t"), e.t, 0.0, 1e7, "[s]");
     requireInRange(c.path("rudder"), e.rudder, -kPi / 2, kPi / 2, "[rad]");
     requireInRange(c.path("elevator"), e.elevator, -kPi / 2, kPi / 2, "[rad]");
@@ -192,7 +196,7 @@ Scenario loadScenarioFile(const std::string& path)
   {
     throw std::invalid_argument(path + ": cannot read the scenario: " + e.what());
   }
-  return loadScenario(root);
+  return loadScenario(root, directoryOf(path));
 }
 
 YAML::Node toYaml(const Scenario& sc)
@@ -230,6 +234,7 @@ YAML::Node toYaml(const Scenario& sc)
     n["rudder"] = e.rudder;
     n["elevator"] = e.elevator;
     n["thrust"] = e.thrust;
+    n["payout_rate"] = e.payout_rate;
     root["commands"].push_back(n);
   }
   YAML::Node init = root["initial_state"];

@@ -1,6 +1,7 @@
 #include "tow_sim/core/seabed.h"
 
 #include "tow_sim/core/params.h"
+#include "tow_sim/core/simulator.h"
 
 #include <algorithm>
 #include <cmath>
@@ -145,6 +146,14 @@ Eigen::Vector3d Seabed::contactForce(const Eigen::Vector3d& p_W, const Eigen::Ve
   if (speed > 0.0)
     f -= p_.friction * push * slide / std::sqrt(speed * speed + p_.friction_speed * p_.friction_speed);
   return f;
+}
+
+void liftAboveSeabed(const Seabed& seabed, ChainState& state)
+{
+  if (!seabed.present())
+    return;
+  for (int j = 0; j < state.x.cols(); ++j)
+    state.x(2, j) = std::max(state.x(2, j), seabed.bottomZ(state.x(0, j), state.x(1, j)));
 }
 
 }  // namespace tow_sim

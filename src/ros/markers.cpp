@@ -1,5 +1,6 @@
 #include "tow_sim/ros/markers.h"
 
+#include <cmath>
 #include <cstdio>
 
 #include "tow_sim/ros/conversions.h"
@@ -117,6 +118,27 @@ visualization_msgs::MarkerArray makeMarkers(const Simulator& sim, const Vehicle&
   vehicle_label.scale.z = 1.5;
   vehicle_label.color = grey(1.0);
   array.markers.push_back(vehicle_label);
+
+  // The seabed around the vehicle: a 800 m square of triangles, 40 m apart, on the bottom.
+  const Seabed* seabed = sim.model().seabed();
+  if (seabed)
+  {
+    Marker bottom = baseMarker(header, "seabed", 0, Marker::TRIANGLE_LIST);
+    bottom.scale.x = bottom.scale.y = bottom.scale.z = 1.0;
+    bottom.color.r = 0.55;
+    bottom.color.g = 0.45;
+    bottom.color.b = 0.3;
+    bottom.color.a = 0.6;
+    const double step = 40.0, half = 400.0;
+    const double x0 = std::round(out.p_cg_W.x() / step) * step - half, y0 = std::round(out.p_cg_W.y() / step) * step - half;
+    auto at = [&](double x, double y) { return ros_conv::toPoint(Eigen::Vector3d(x, y, seabed->bottomZ(x, y))); };
+    for (double x = x0; x < x0 + 2 * half; x += step)
+      for (double y = y0; y < y0 + 2 * half; y += step)
+        for (const auto& p : { at(x, y), at(x + step, y), at(x + step, y + step), at(x, y), at(x + step, y + step),
+                               at(x, y + step) })
+          bottom.points.push_back(p);
+    array.markers.push_back(bottom);
+  }
   return array;
 }
 

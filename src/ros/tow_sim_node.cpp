@@ -108,12 +108,16 @@ TowSimNode::TowSimNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   odometry_limits_.max_ship_speed = params_.max_ship_speed;
   vehicle_ = std::make_shared<Vehicle>(config_.vehicle, config_.numerics);
   model_ = std::make_shared<ChainModel>(config_.cable, vehicle_, config_.environment, config_.numerics);
+  if (config_.seabed.type != SeabedParams::Type::kNone)
+    model_->setSeabed(seabed_ = std::make_shared<Seabed>(config_.seabed));
   diagnostics_.setHardwareID("tow_sim");
   diagnostics_.add("simulation", this, &TowSimNode::diagnose);
 
   odom_sub_ = nh_.subscribe("ship/odom", 50, &TowSimNode::onOdometry, this);
   fin_sub_ = nh_.subscribe("fins/command", 10, &TowSimNode::onFinCommand, this);
   current_sub_ = nh_.subscribe("current", 10, &TowSimNode::onCurrent, this);
+  current_profile_sub_ = nh_.subscribe("current_profile", 2, &TowSimNode::onCurrentProfile, this);
+  winch_sub_ = nh_.subscribe("winch/command", 10, &TowSimNode::onWinchCommand, this);
   state_pub_ = nh_.advertise<tow_sim::CableState>("cable/state", 10);
   marker_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("cable/markers", 2);
   vehicle_odom_pub_ = nh_.advertise<nav_msgs::Odometry>("vehicle/odom", 10);
@@ -150,13 +154,19 @@ void TowSimNode::start(double t)
   if (params_.initial_shape != "hanging")
     direction = -std::cos(params_.initial_angle) * heading - std::sin(params_.initial_angle) * Eigen::Vector3d::UnitZ();
   if (!sim_)
-    sim_ = std::make_unique<Simulator>(model_, [this](double time) { return track_(time); });
+    sim_ = std::make_unique<Simulator>(model_, [this](double time) { return track_(time); }, config_.winch);
   vehicle_->resetActuators(t);
+  // The initial shapes know nothing of the seabed: joints below it are raised onto it.
+  auto lift = [this](ChainState state) {
+    if (seabed_)
+      liftAboveSeabed(*seabed_, state);
+    return state;
+  };
   if (params_.initial_shape == "equilibrium")
   {
     try
     {
-      sim_->reset(t, steadyTowEquilibrium(*model_, t, ship.p_W, ship.v_W).state);
+      sim_->reset(t, lift(steadyTowEquilibrium(*model_, t, ship.p_W, ship.v_W).state));
       started_ = true;
       attitude_.reset();
       return;
@@ -166,7 +176,7 @@ void TowSimNode::start(double t)
       ROS_WARN("tow_sim: %s; starting from a straight line instead", e.what());
     }
   }
-  sim_->reset(t, straightChain(*model_, ship.p_W, direction, ship.v_W));
+  sim_->reset(t, lift(straightChain(*model_, ship.p_W, direction, ship.v_W)));
   attitude_.reset();
   started_ = true;
 }
@@ -240,6 +250,52 @@ void TowSimNode::onCurrent(const geometry_msgs::Vector3Stamped::ConstPtr& msg)
   {
     ++rejected_messages_;
     ROS_WARN_THROTTLE(2.0, "tow_sim: rejected current: %s", e.what());
+  }
+}
+
+void TowSimNode::onCurrentProfile(const tow_sim::CurrentProfile::ConstPtr& msg)
+{
+  auto reject = [this](const std::string& why) {
+    ++rejected_messages_;
+    ROS_WARN_THROTTLE(2.0, "tow_sim: rejected current_profile: %s", why.c_str());
+  };
+  if (!msg->header.frame_id.empty() && msg->header.frame_id != params_.world_frame)
+    return reject("header.frame_id = '" + msg->header.frame_id + "', expected '" + params_.world_frame + "'");
+  if (msg->depth.size() != msg->velocity.size())
+    return reject("depth has " + std::to_string(msg->depth.size()) + " entries, velocity " +
+                  std::to_string(msg->velocity.size()) + ": they must match");
+  std::vector<CurrentSample> profile;
+  for (std::size_t i = 0; i < msg->depth.size(); ++i)
+    profile.push_back(
+        CurrentSample{ msg->depth[i], Eigen::Vector3d(msg->velocity[i].x, msg->velocity[i].y, msg->velocity[i].z) });
+  try
+  {
+    model_->setCurrentProfile(profile);
+  }
+  catch (const std::invalid_argument& e)
+  {
+    reject(e.what());
+  }
+}
+
+void TowSimNode::onWinchCommand(const std_msgs::Float64::ConstPtr& msg)
+{
+  if (!sim_)
+  {
+    ROS_WARN_THROTTLE(2.0, "tow_sim: winch/command ignored: no ship odometry yet");
+    return;
+  }
+  try
+  {
+    const double applied = sim_->setWinchCommand(msg->data);
+    if (applied != msg->data)
+      ROS_WARN_THROTTLE(2.0, "tow_sim: winch/command %.3f m/s saturated at %.3f m/s (winch.max_rate)", msg->data,
+                        applied);
+  }
+  catch (const std::invalid_argument& e)
+  {
+    ++rejected_messages_;
+    ROS_WARN_THROTTLE(2.0, "tow_sim: rejected winch/command (data [m/s]): %s", e.what());
   }
 }
 
@@ -337,7 +393,18 @@ void TowSimNode::publishTick(const ros::TimerEvent&)
   state.layback = (ship.p_W - o.p_cg_W).dot(track_direction_);
   state.diversion = d.offset;
   state.diversion_rate = d.rate;
-  state.cable_length = config_.cable.length;
+  state.cable_length = sim_->cableLength();
+  state.payout_rate = sim_->payoutRate();
+  state.seabed_present = seabed_ != nullptr;
+  state.seabed_contact.assign(joints.cols(), false);
+  if (seabed_)
+  {
+    state.vehicle_altitude = seabed_->altitude(o.p_cg_W);
+    for (int j = 1; j < joints.cols(); ++j)
+      state.seabed_contact[j] = seabed_->altitude(joints.col(j)) < 0.0;
+    for (double eta : vehicle_->contactFractions())
+      state.vehicle_on_seabed = state.vehicle_on_seabed || seabed_->altitude(k.pointAt(eta)) < 0.0;
+  }
   state.max_length_error = max_length_error_;
   state_pub_.publish(state);
 

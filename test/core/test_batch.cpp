@@ -62,8 +62,10 @@ TEST(Batch, EveryScenarioRunsAndWritesTheDocumentedColumns)
                                              "vehicle_y", "vehicle_z", "vehicle_roll", "vehicle_pitch",
                                              "vehicle_yaw", "depth", "layback", "diversion", "diversion_rate",
                                              "tension_ship", "tension_vehicle", "rudder", "elevator", "thrust",
-                                             "max_length_error" };
-  for (const std::string name : { "report_elevator_step", "turn_180", "speed_change", "zigzag" })
+                                             "max_length_error", "cable_length", "payout_rate",
+                                             "vehicle_altitude", "seabed_contacts" };
+  for (const std::string name : { "report_elevator_step", "turn_180", "speed_change", "zigzag", "winch_payout",
+                                  "seabed_shoal", "sheared_current" })
   {
     const std::string scenario = std::string(TOW_SIM_SOURCE_DIR) + "/scenarios/" + name + ".yaml";
     const std::string out = "/tmp/tow_sim_test_batch_" + name;
@@ -78,8 +80,13 @@ TEST(Batch, EveryScenarioRunsAndWritesTheDocumentedColumns)
     for (size_t r = 1; r < rows.size(); ++r)
     {
       ASSERT_EQ(rows[r].size(), columns.size()) << name << " row " << r;
-      for (const std::string& cell : rows[r])
-        ASSERT_TRUE(std::isfinite(std::stod(cell))) << name << " row " << r;
+      for (size_t c = 0; c < rows[r].size(); ++c)
+      {
+        const std::string& cell = rows[r][c];
+        if (cell.empty() && columns[c] == "vehicle_altitude" && sc.config.seabed.type == SeabedParams::Type::kNone)
+          continue;  // documented: blank without a seabed
+        ASSERT_TRUE(std::isfinite(std::stod(cell))) << name << " row " << r << " column " << columns[c];
+      }
     }
     // Tension is positive, the vehicle is under water, the lengths held.
     for (size_t r = 1; r < rows.size(); ++r)
@@ -90,7 +97,10 @@ TEST(Batch, EveryScenarioRunsAndWritesTheDocumentedColumns)
     }
     const auto shapes = readCsv(out + "/shapes.csv");
     EXPECT_EQ(shapes[0], (std::vector<std::string>{ "t", "joint", "x", "y", "z", "tension" }));
-    EXPECT_EQ((shapes.size() - 1) % static_cast<size_t>(sc.config.cable.segments + 2), 0u);
+    if (!sc.config.winch.enabled)  // else the joint count changes
+    {
+      EXPECT_EQ((shapes.size() - 1) % static_cast<size_t>(sc.config.cable.segments + 2), 0u);
+    }
     // The resolved scenario reads back to the same run.
     const Scenario again = loadScenarioFile(out + "/scenario.yaml");
     EXPECT_EQ(again.duration, sc.duration);
@@ -100,6 +110,8 @@ TEST(Batch, EveryScenarioRunsAndWritesTheDocumentedColumns)
     ASSERT_EQ(status, 0) << plot_log;
     for (const char* png : { "depth_diversion.png", "tensions.png", "plan_view.png", "side_view.png" })
       EXPECT_GT(fileSize(out + "/" + png), 5000) << name << " " << png;
+    EXPECT_EQ(fileSize(out + "/winch.png") > 5000, sc.config.winch.enabled) << name;
+    EXPECT_EQ(fileSize(out + "/seabed.png") > 5000, sc.config.seabed.type != SeabedParams::Type::kNone) << name;
   }
 }
 
@@ -115,6 +127,19 @@ TEST(Batch, ReportsScenarioEffectsWithTheRightSense)
   EXPECT_GT(column("speed_change", 11, -1), column("speed_change", 11, 50) + 20.0);
   EXPECT_GT(column("speed_change", 15, -1), column("speed_change", 15, 50));
   EXPECT_GT(column("turn_180", 13, 250), 50.0);
+  // Winch: out to 450 m and the vehicle deeper there, back to 300 m and the depth with it.
+  EXPECT_NEAR(column("winch_payout", 21, 500), 450.0, 0.01);
+  EXPECT_NEAR(column("winch_payout", 21, -1), 300.0, 0.01);
+  EXPECT_GT(column("winch_payout", 11, 500), column("winch_payout", 11, 50) + 20.0);
+  EXPECT_NEAR(column("winch_payout", 11, -1), column("winch_payout", 11, 50), 0.1);
+  // Seabed: never more than a penalty's centimetres into it, and on the 70 m shoal at the end.
+  const auto shoal = readCsv("/tmp/tow_sim_test_batch_seabed_shoal/timeseries.csv");
+  for (size_t r = 1; r < shoal.size(); ++r)
+    EXPECT_GT(std::stod(shoal[r][23]), -0.3) << "row " << r;
+  EXPECT_LT(column("seabed_shoal", 11, -1), 70.5);
+  EXPECT_GT(column("seabed_shoal", 24, -1), 0.0);  // the cable drags on the bottom
+  // Sheared cross-current from the south: the vehicle is carried to port of the eastbound ship.
+  EXPECT_GT(column("sheared_current", 13, 250), 5.0);
 }
 
 TEST(Batch, BadScenariosAreRefusedNamingTheKey)
@@ -134,6 +159,11 @@ TEST(Batch, BadScenariosAreRefusedNamingTheKey)
   refuse("commands: [{t: 5, elevator: 3}]", "commands[0].elevator = 3");
   refuse("cable: {segments: 0}", "cable.segments = 0");
   refuse("initial_state: {type: points, points: [1, 2, 3]}", "initial_state.points: must hold");
+  refuse("commands: [{t: 5, payout_rate: 1}]", "commands[0].payout_rate: needs the winch");
+  refuse("winch: {enabled: true, max_length: 100}", "cable.length = 500 is out of range");
+  refuse("seabed: {type: grid, grid_file: no_such_grid.yaml}", "seabed.grid_file: /tmp/no_such_grid.yaml");
+  refuse("seabed: {type: flat, depth: -3}", "seabed.depth = -3");
+  refuse("environment: {current_profile: [{depth: 50}, {depth: 20}]}", "current_profile[1].depth = 20");
   int status = 0;
   run(std::string(TOW_SIM_BATCH_BINARY) + " --scenario", &status);
   EXPECT_EQ(status, 2);

@@ -49,6 +49,25 @@ void expectSame(const SimulationConfig& a, const SimulationConfig& b)
   EXPECT_EQ(a.environment.gravity, b.environment.gravity);
   EXPECT_EQ(a.environment.water_density, b.environment.water_density);
   EXPECT_EQ(a.environment.current_W, b.environment.current_W);
+  EXPECT_EQ(YAML::Dump(toYaml(a)).find("winch"), YAML::Dump(toYaml(b)).find("winch"));
+  EXPECT_EQ(a.winch.enabled, b.winch.enabled);
+  EXPECT_EQ(a.winch.min_length, b.winch.min_length);
+  EXPECT_EQ(a.winch.max_length, b.winch.max_length);
+  EXPECT_EQ(a.winch.max_rate, b.winch.max_rate);
+  EXPECT_EQ(a.winch.max_acceleration, b.winch.max_acceleration);
+  EXPECT_EQ(a.winch.response_time, b.winch.response_time);
+  EXPECT_EQ(a.winch.segment_min_fraction, b.winch.segment_min_fraction);
+  EXPECT_EQ(a.winch.segment_max_fraction, b.winch.segment_max_fraction);
+  EXPECT_EQ(a.seabed.type, b.seabed.type);
+  EXPECT_EQ(a.seabed.depth, b.seabed.depth);
+  EXPECT_EQ(a.seabed.grid_file, b.seabed.grid_file);
+  EXPECT_EQ(a.seabed.grid.depth, b.seabed.grid.depth);
+  EXPECT_EQ(a.seabed.stiffness, b.seabed.stiffness);
+  EXPECT_EQ(a.seabed.damping, b.seabed.damping);
+  EXPECT_EQ(a.seabed.vehicle_stiffness, b.seabed.vehicle_stiffness);
+  EXPECT_EQ(a.seabed.vehicle_damping, b.seabed.vehicle_damping);
+  EXPECT_EQ(a.seabed.friction, b.seabed.friction);
+  EXPECT_EQ(a.seabed.friction_speed, b.seabed.friction_speed);
   ASSERT_EQ(a.environment.current_profile.size(), b.environment.current_profile.size());
   for (std::size_t i = 0; i < a.environment.current_profile.size(); ++i)
   {
@@ -107,6 +126,8 @@ environment:
   current: [0.3, -0.2, 0.0]
   current_profile: [{depth: 0, velocity: [0, 0, 0]}, {depth: 150, velocity: [0, 0.6, 0]}]
 numerics: {stepper: rk4, fixed_step: 0.02}
+winch: {enabled: true, min_length: 100, max_length: 900, max_rate: 1.5}
+seabed: {type: flat, depth: 400, friction: 0.3}
 vehicle:
   inertia: {xx: 3, yy: 50, zz: 55, xz: 1.5}
   added_mass: {approach: B, munk_terms: true, prolate_spheroid: {length: 2.0, diameter: 0.3, center_from_bail: 0.2}}

@@ -41,6 +41,7 @@ struct CommandEvent
   double rudder = 0.0;    // [rad]
   double elevator = 0.0;  // [rad]
   double thrust = 0.0;    // [N]
+  double payout_rate = 0.0;  // [m/s] winch, positive pays out (needs winch.enabled)
 };
 
 struct Scenario
@@ -65,7 +66,7 @@ struct Scenario
 };
 
 // Reads a scenario; throws std::invalid_argument naming the key, the value and the allowed range.
-Scenario loadScenario(const YAML::Node& root);
+Scenario loadScenario(const YAML::Node& root, const std::string& base_dir = "");
 Scenario loadScenarioFile(const std::string& path);
 YAML::Node toYaml(const Scenario& scenario);
 

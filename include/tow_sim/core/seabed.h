@@ -68,4 +68,9 @@ private:
   SeabedParams p_;
 };
 
+struct ChainState;
+// Raises every joint of `state` that lies below the bottom onto it (a start from a shape computed
+// without the seabed; the simulator's reset then restores the segment lengths).
+void liftAboveSeabed(const Seabed& seabed, ChainState& state);
+
 }  // namespace tow_sim

@@ -15,6 +15,9 @@
 #include <memory>
 #include <string>
 
+#include <std_msgs/Float64.h>
+
+#include "tow_sim/CurrentProfile.h"
 #include "tow_sim/FinCommand.h"
 #include "tow_sim/core/config.h"
 #include "tow_sim/core/odometry_check.h"
@@ -56,6 +59,8 @@ private:
   void onOdometry(const nav_msgs::Odometry::ConstPtr& msg);
   void onFinCommand(const tow_sim::FinCommand::ConstPtr& msg);
   void onCurrent(const geometry_msgs::Vector3Stamped::ConstPtr& msg);
+  void onCurrentProfile(const tow_sim::CurrentProfile::ConstPtr& msg);
+  void onWinchCommand(const std_msgs::Float64::ConstPtr& msg);
   bool onReset(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
   bool onSetPaused(std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res);
   void physicsTick(const ros::TimerEvent& event);
@@ -71,6 +76,7 @@ private:
   SimulationConfig config_;
   std::shared_ptr<Vehicle> vehicle_;
   std::shared_ptr<ChainModel> model_;
+  std::shared_ptr<const Seabed> seabed_;  // null without one
   std::unique_ptr<Simulator> sim_;
   ShipTrack track_;
   OdometryLimits odometry_limits_;
@@ -93,7 +99,7 @@ private:
   double max_length_error_ = 0.0;
   bool holding_ = false;
 
-  ros::Subscriber odom_sub_, fin_sub_, current_sub_;
+  ros::Subscriber odom_sub_, fin_sub_, current_sub_, current_profile_sub_, winch_sub_;
   ros::Publisher state_pub_, marker_pub_, vehicle_odom_pub_, fin_loads_pub_;
   ros::ServiceServer reset_srv_, pause_srv_;
   ros::Timer physics_timer_, publish_timer_, status_timer_;
