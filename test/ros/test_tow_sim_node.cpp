@@ -20,12 +20,15 @@
 #include <mutex>
 #include <string>
 
+#include <std_msgs/Float64.h>
+
 #include "tow_sim/CableState.h"
+#include "tow_sim/CurrentProfile.h"
 #include "tow_sim/FinCommand.h"
 
 namespace
 {
-const char* const kNodes[] = { "base", "elevator", "rudder", "robust", "unstable" };
+const char* const kNodes[] = { "base", "elevator", "rudder", "robust", "unstable", "winch" };
 
 struct Recorder
 {
@@ -76,8 +79,8 @@ public:
     publishClock();
     // Wait until every node listens to the ship before the first odometry, so all start alike.
     const ros::WallTime give_up = ros::WallTime::now() + ros::WallDuration(60.0);
-    while ((odom_pub_.getNumSubscribers() < 4 || robust_odom_pub_.getNumSubscribers() < 1 ||
-            clock_pub_.getNumSubscribers() < 5) &&
+    while ((odom_pub_.getNumSubscribers() < 5 || robust_odom_pub_.getNumSubscribers() < 1 ||
+            clock_pub_.getNumSubscribers() < 6) &&
            ros::WallTime::now() < give_up)
       ros::WallDuration(0.05).sleep();
   }
@@ -322,6 +325,71 @@ TEST(TowSimNode, DivergenceRestartsAndNothingNonFiniteIsPublished)
   EXPECT_GE(restarts, 1);
   EXPECT_GT(world->rec_.state_count["unstable"], 0);
   EXPECT_TRUE(allFinite(world->rec_.state["unstable"]));
+}
+
+int rejectedMessages(const std::string& node)
+{
+  int count = -1;
+  for (const auto& kv : world->rec_.diagnostics)
+    if (kv.first.find(node) != std::string::npos && kv.first.find("rejected messages") != std::string::npos)
+      count = std::atoi(kv.second.c_str());
+  return count;
+}
+
+TEST(TowSimNode, WinchPaysOutOverTheSeabedAndTheStateSaysSo)
+{
+  ros::Publisher winch = world->nh_.advertise<std_msgs::Float64>("/winch/winch/command", 5, true);
+  ros::Publisher profile = world->nh_.advertise<tow_sim::CurrentProfile>("/winch/current_profile", 5);
+  ros::Publisher base_winch = world->nh_.advertise<std_msgs::Float64>("/base/winch/command", 5);
+  const ros::WallTime give_up = ros::WallTime::now() + ros::WallDuration(10.0);
+  while ((winch.getNumSubscribers() < 1 || profile.getNumSubscribers() < 1 || base_winch.getNumSubscribers() < 1) &&
+         ros::WallTime::now() < give_up)
+    ros::WallDuration(0.05).sleep();
+  world->advance(1.0);
+  int rejected_before, base_rejected_before;
+  size_t joints_before;
+  double length_before;
+  {
+    std::lock_guard<std::mutex> lock(world->rec_.mutex);
+    rejected_before = rejectedMessages("winch");
+    base_rejected_before = rejectedMessages("base");
+    joints_before = world->rec_.state["winch"].joints.size();
+    length_before = world->rec_.state["winch"].cable_length;
+  }
+  std_msgs::Float64 rate;
+  rate.data = std::numeric_limits<double>::quiet_NaN();  // refused
+  winch.publish(rate);
+  base_winch.publish(rate);  // refused too: base has no winch
+  tow_sim::CurrentProfile bad;
+  bad.depth = { 50.0, 20.0 };  // not increasing: refused
+  bad.velocity.resize(2);
+  profile.publish(bad);
+  world->advance(0.5);
+  rate.data = 1.0;
+  winch.publish(rate);
+  world->advance(20.0);
+  std::lock_guard<std::mutex> lock(world->rec_.mutex);
+  const tow_sim::CableState& s = world->rec_.state["winch"];
+  std::printf("winch: %.2f m -> %.2f m of cable at %.3f m/s, %zu -> %zu joints; depth %.2f m, altitude %.2f m over "
+              "the 60 m seabed\n",
+              length_before, s.cable_length, s.payout_rate, joints_before, s.joints.size(), s.vehicle_depth,
+              s.vehicle_altitude);
+  EXPECT_NEAR(length_before, 100.0, 1e-6);
+  EXPECT_GT(s.cable_length, 115.0);  // about 18 m in 20 s, after the rate ramp
+  EXPECT_LT(s.cable_length, 121.0);
+  EXPECT_NEAR(s.payout_rate, 1.0, 1e-3);
+  EXPECT_GE(s.joints.size(), joints_before + 3);  // 5 m segments split off at the ship
+  EXPECT_EQ(s.tension.size(), s.joints.size() - 1);
+  EXPECT_EQ(s.seabed_contact.size(), s.joints.size());
+  EXPECT_TRUE(s.seabed_present);
+  EXPECT_TRUE(allFinite(s));
+  // The vehicle's altitude is the seabed's depth less its own (flat bottom).
+  const double cg_z = world->rec_.odom["winch"].pose.pose.position.z;
+  EXPECT_NEAR(s.vehicle_altitude, cg_z + 60.0, 1e-6);
+  EXPECT_FALSE(world->rec_.state["base"].seabed_present);
+  EXPECT_NEAR(world->rec_.state["base"].cable_length, 100.0, 1e-9);
+  EXPECT_GE(rejectedMessages("winch"), rejected_before + 2);  // NaN rate and the bad profile
+  EXPECT_GE(rejectedMessages("base"), base_rejected_before + 1);
 }
 
 TEST(TowSimNode, BadConfigurationExitsNamingTheParameter)
