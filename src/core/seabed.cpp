@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <sys/stat.h>
 #include <yaml-cpp/yaml.h>
 
 namespace tow_sim
@@ -41,6 +42,12 @@ void validate(const SeabedParams& s, const std::string& p)
 
 BathymetryGrid loadBathymetryFile(const std::string& path)
 {
+  // Only a regular file of sane size (not a device, pipe or directory that would block or never end).
+  struct stat st;
+  if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode))
+    throw std::invalid_argument(path + ": cannot read the bathymetry grid: not a readable regular file");
+  if (st.st_size > 200L * 1024 * 1024)
+    throw std::invalid_argument(path + ": the bathymetry grid file is larger than 200 MB");
   try
   {
     const YAML::Node root = YAML::LoadFile(path);
