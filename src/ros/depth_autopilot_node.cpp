@@ -110,9 +110,12 @@ void DepthAutopilotNode::onVehicleOdometry(const nav_msgs::Odometry::ConstPtr& m
     m.p_W = Eigen::Vector3d(p.x, p.y, p.z);
     m.v_W = q.normalized() * Eigen::Vector3d(v.x, v.y, v.z);  // the twist is in the vehicle frame
     const bool had_setpoint = autopilot_.hasSetpoint();
+    // tow_sim_node repeats a stamp while its simulation holds: ignored quietly; older ones are warned of.
+    if (autopilot_.hasVehicle() && m.t < autopilot_.vehicleStamp())
+      ROS_WARN_THROTTLE(2.0, "depth_autopilot: ignored vehicle/odom: its stamp is older than the previous one");
     if (!autopilot_.addVehicle(m))
-      ROS_WARN_THROTTLE(2.0, "depth_autopilot: ignored vehicle/odom: its stamp is not after the previous one");
-    else if (!had_setpoint && !announced_hold_)
+      return;
+    if (!had_setpoint && !announced_hold_)
     {
       announced_hold_ = true;
       ROS_INFO("depth_autopilot: no setpoint on %s yet: holding the first vehicle depth, %.2f m",

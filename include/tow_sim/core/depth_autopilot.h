@@ -117,6 +117,8 @@ public:
   AutopilotCommand update(double now);
 
   void reset();  // forgets the integral, the measurements, the setpoint and the track
+  bool hasVehicle() const { return has_vehicle_; }
+  double vehicleStamp() const { return vehicle_.t; }  // [s] of the newest accepted measurement
   const DepthAutopilotParams& params() const { return p_; }
   const PastTrack& track() const { return track_; }
 
