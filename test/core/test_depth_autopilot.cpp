@@ -149,9 +149,10 @@ TEST(DepthAutopilot, AntiWindupBoundsTheIntegralWhileSaturatedAndAvoidsOvershoot
       ours.saturated_time, ours.max_integral_saturated, plain.max_integral_saturated, ours.overshoot, plain.overshoot);
   ASSERT_GT(ours.saturated_time, 5.0);  // the case does saturate
   EXPECT_GT(plain.overshoot, 3.0);      // and windup would matter in it
-  EXPECT_LE(ours.max_integral_saturated, 0.436 + 1e-12);
-  EXPECT_LT(ours.max_integral_saturated, 0.5 * plain.max_integral_saturated);
-  EXPECT_LT(ours.overshoot, 1.0);
+  // Conditional integration: the integral (0 at the step) does not wind up while saturated at all; merely
+  // clamping it to +-max_elevator would let it reach 0.436 rad here and overshoot 0.66 m.
+  EXPECT_LT(ours.max_integral_saturated, 0.05);
+  EXPECT_LT(ours.overshoot, 0.3);
 }
 
 TEST(DepthAutopilot, IntegratesOncePerMeasurementNotPerCall)
