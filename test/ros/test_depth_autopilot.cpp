@@ -190,7 +190,7 @@ private:
 
 std::unique_ptr<Loop> loop;
 
-TEST(DepthAutopilot, ReachesAStepSetpointAndHoldsItThroughA180DegreeTurn)
+TEST(DepthAutopilotNode, ReachesAStepSetpointAndHoldsItThroughA180DegreeTurn)
 {
   const ros::WallTime wall_start = ros::WallTime::now();
   // Steady tow: without a setpoint the autopilot holds the first depth it sees.
@@ -246,7 +246,7 @@ TEST(DepthAutopilot, ReachesAStepSetpointAndHoldsItThroughA180DegreeTurn)
               loop->time_ - 100.0, (ros::WallTime::now() - wall_start).toSec(), loop->late_steps_);
 }
 
-TEST(DepthAutopilot, BadSetpointsAreIgnoredAndStaleOdometryCentresTheFins)
+TEST(DepthAutopilotNode, BadSetpointsAreIgnoredAndStaleOdometryCentresTheFins)
 {
   const double held = loop->depth();
   loop->setpoint(-5.0);
@@ -283,7 +283,7 @@ TEST(DepthAutopilot, BadSetpointsAreIgnoredAndStaleOdometryCentresTheFins)
   EXPECT_TRUE(pause.call(srv));
 }
 
-TEST(DepthAutopilot, BadParameterExitsNamingIt)
+TEST(DepthAutopilotNode, BadParameterExitsNamingIt)
 {
   loop->nh_.setParam("/bad/depth_autopilot/kp", -1.0);
   FILE* pipe = popen(DEPTH_AUTOPILOT_NODE_BINARY " __ns:=/bad __name:=depth_autopilot 2>&1", "r");
