@@ -1,0 +1,139 @@
+// Depth autopilot for the towed vehicle, without ROS: a PID on depth for the elevator and track keeping
+// behind the ship for the rudder. The caller hands it time and measurements (the core reads no clock);
+// depth_autopilot_node wraps it for ROS.
+//
+// Signs (msg/FinCommand.msg): a positive elevator pushes the fins up, so the vehicle rises; a positive
+// rudder pushes the fins to port. Depth is positive down (depth = -z, world ENU).
+#pragma once
+
+#include <Eigen/Core>
+
+#include <deque>
+#include <string>
+
+namespace tow_sim
+{
+struct DepthAutopilotParams
+{
+  // Elevator: elevator = -(kp e + ki int(e) dt + kd de/dt) with e = setpoint - depth (positive: too shallow,
+  // so the elevator goes negative and the vehicle dives). de/dt = v_up, the measured vertical velocity
+  // (world, up), so a setpoint step gives no derivative kick. Anti-windup: the integral stops growing
+  // while the output saturates in the direction it would grow, and its term is bounded by max_elevator.
+  double kp = 0.1;              // [rad/m] elevator per metre of depth error, [0, 10]
+  double ki = 0.0025;           // [rad/(m s)] integral gain, [0, 10]
+  double kd = 0.2;              // [rad/(m/s)] elevator per m/s of vertical velocity (world, up), [0, 100]
+  double max_elevator = 0.436;  // [rad] output limit, (0, pi/2]; the default vehicle's max_deflection
+  // Rudder: rudder = clamp(-rudder_kp offset - rudder_kd offset_rate, +-max_rudder), the offset measured
+  // from the ship's past track, positive to port.
+  bool track_keeping = true;     // false: the rudder stays at 0
+  double rudder_kp = 0.02;       // [rad/m] rudder per metre of lateral offset, [0, 10]
+  double rudder_kd = 0.2;        // [rad/(m/s)] rudder per m/s of lateral offset rate, [0, 100]
+  double max_rudder = 0.436;     // [rad] output limit, (0, pi/2]
+  double track_spacing = 1.0;    // [m] a ship position is stored each time it has moved this far, [0.01, 1000]
+  double track_length = 5000.0;  // [m] of past track kept (older points dropped), [10, 1e6], >= 2 spacings
+  double thrust = 0.0;           // [N] constant thrust command, [-1e6, 1e6]
+  double odom_timeout = 1.0;     // [s] older vehicle odometry is stale: fins centred, (0, 3600]
+  double max_depth = 10000.0;    // [m] setpoints are accepted in [0, max_depth], (0, 1e5]
+
+  // Throws std::invalid_argument naming `prefix + key`, the value and its range.
+  void validate(const std::string& prefix = "") const;
+};
+
+// The ship's past track: positions stored every `spacing` metres travelled, at most `length` metres of
+// them (a bounded deque). The vehicle's lateral offset is measured from the nearest segment; the oldest
+// and newest segments extend as straight lines beyond their ends, so a vehicle astern of the oldest
+// stored point (the ship has not yet gone far) still gets an offset.
+class PastTrack
+{
+public:
+  PastTrack(double spacing, double length);
+  void add(const Eigen::Vector2d& p_W);  // [m] ship position, world; ignored unless finite
+  void clear() { points_.clear(); }
+  size_t size() const { return points_.size(); }
+  bool usable() const { return points_.size() >= 2; }
+
+  struct Offset
+  {
+    double offset = 0.0;  // [m] horizontal, positive to port of the track's direction of travel
+    double rate = 0.0;    // [m/s] of the offset: the velocity along the segment's port normal
+    size_t segment = 0;   // index of the nearest segment, oldest first
+  };
+  // Needs usable(); p_W [m] and v_W [m/s] of the vehicle, world, horizontal components.
+  Offset offset(const Eigen::Vector2d& p_W, const Eigen::Vector2d& v_W) const;
+
+private:
+  double spacing_;
+  size_t max_points_;
+  std::deque<Eigen::Vector2d> points_;
+};
+
+// Vehicle CG measurement from odometry.
+struct VehicleMeasurement
+{
+  double t = 0.0;                                 // [s] stamp
+  Eigen::Vector3d p_W = Eigen::Vector3d::Zero();  // [m] CG position, world ENU (z up, depth = -z)
+  Eigen::Vector3d v_W = Eigen::Vector3d::Zero();  // [m/s] CG velocity, world ENU
+};
+
+struct AutopilotCommand
+{
+  enum class Status
+  {
+    kWaiting,  // no vehicle odometry yet: fins centred
+    kStale,    // the newest vehicle odometry is older than odom_timeout: fins centred
+    kActive
+  };
+  Status status = Status::kWaiting;
+  double rudder = 0.0;       // [rad]
+  double elevator = 0.0;     // [rad]
+  double thrust = 0.0;       // [N]
+  double depth_error = 0.0;  // [m] setpoint - depth (positive: too shallow)
+  double integral = 0.0;     // [rad] the integral term's contribution to the elevator
+  bool elevator_saturated = false;
+  bool tracking = false;           // the rudder is steering on the ship's track
+  double track_offset = 0.0;       // [m] positive to port
+  double track_offset_rate = 0.0;  // [m/s]
+};
+
+class DepthAutopilot
+{
+public:
+  explicit DepthAutopilot(const DepthAutopilotParams& params);  // validates
+
+  // Depth setpoint [m], positive down, in [0, max_depth]; throws std::invalid_argument otherwise.
+  void setSetpoint(double depth);
+  bool hasSetpoint() const { return has_setpoint_; }
+  double setpoint() const { return setpoint_; }
+
+  // Vehicle odometry; throws std::invalid_argument for a non-finite field. A measurement whose stamp is
+  // not after the previous one is ignored (returns false). Without a setpoint, the first measurement's
+  // depth becomes the setpoint.
+  bool addVehicle(const VehicleMeasurement& m);
+  // Ship position [m], world; throws std::invalid_argument if not finite.
+  void addShip(const Eigen::Vector2d& p_W);
+
+  // The command at time `now` [s] from the newest measurement. The integral advances by the time between
+  // measurements, so calling this more often than odometry arrives does not integrate twice.
+  AutopilotCommand update(double now);
+
+  void reset();  // forgets the integral, the measurements, the setpoint and the track
+  bool hasVehicle() const { return has_vehicle_; }
+  double vehicleStamp() const { return vehicle_.t; }  // [s] of the newest accepted measurement
+  const DepthAutopilotParams& params() const { return p_; }
+  const PastTrack& track() const { return track_; }
+
+private:
+  double elevator(double error, double v_up, double dt, AutopilotCommand& out);
+
+  DepthAutopilotParams p_;
+  PastTrack track_;
+  bool has_setpoint_ = false;
+  double setpoint_ = 0.0;
+  bool has_vehicle_ = false;
+  VehicleMeasurement vehicle_;
+  double integrated_until_ = 0.0;  // [s] stamp of the measurement last integrated
+  bool integrated_ = false;
+  double integral_ = 0.0;  // [rad] -ki int(e) dt: the integral term's part of the elevator
+};
+
+}  // namespace tow_sim

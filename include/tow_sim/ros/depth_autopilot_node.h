@@ -1,0 +1,40 @@
+// The ROS adapter around the core DepthAutopilot: vehicle/odom, ship/odom and autopilot/depth_setpoint in;
+// fins/command out at ~rate. Parameters, topics and signs: README.md ("depth_autopilot_node").
+#pragma once
+
+#include <nav_msgs/Odometry.h>
+#include <ros/ros.h>
+#include <std_msgs/Float64.h>
+
+#include <string>
+
+#include "tow_sim/core/depth_autopilot.h"
+
+namespace tow_sim
+{
+class DepthAutopilotNode
+{
+public:
+  // Reads and validates every parameter; throws std::invalid_argument naming the full parameter path,
+  // the value and the range.
+  DepthAutopilotNode(ros::NodeHandle nh, ros::NodeHandle pnh);
+
+private:
+  void onVehicleOdometry(const nav_msgs::Odometry::ConstPtr& msg);
+  void onShipOdometry(const nav_msgs::Odometry::ConstPtr& msg);
+  void onSetpoint(const std_msgs::Float64::ConstPtr& msg);
+  void tick(const ros::TimerEvent& event);
+  bool frameOk(const nav_msgs::Odometry& msg, const char* topic);
+
+  ros::NodeHandle nh_, pnh_;
+  DepthAutopilotParams params_;
+  double rate_ = 10.0;                // [Hz] fins/command
+  std::string world_frame_ = "odom";  // frame of both odometries
+  DepthAutopilot autopilot_;
+  bool announced_hold_ = false;
+  ros::Subscriber vehicle_sub_, ship_sub_, setpoint_sub_;
+  ros::Publisher fin_pub_;
+  ros::Timer timer_;
+};
+
+}  // namespace tow_sim

@@ -1,0 +1,180 @@
+#include "tow_sim/core/depth_autopilot.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "tow_sim/core/params.h"
+
+namespace tow_sim
+{
+namespace
+{
+constexpr double kHalfPi = 1.57079632679489661923;
+
+const DepthAutopilotParams& validated(const DepthAutopilotParams& p)
+{
+  p.validate();
+  return p;
+}
+}  // namespace
+
+void DepthAutopilotParams::validate(const std::string& prefix) const
+{
+  requireInRange(prefix + "kp", kp, 0.0, 10.0, "[rad/m]");
+  requireInRange(prefix + "ki", ki, 0.0, 10.0, "[rad/(m s)]");
+  requireInRange(prefix + "kd", kd, 0.0, 100.0, "[rad/(m/s)]");
+  requireInRange(prefix + "max_elevator", max_elevator, 0.0, kHalfPi, "[rad]", true);
+  requireInRange(prefix + "rudder_kp", rudder_kp, 0.0, 10.0, "[rad/m]");
+  requireInRange(prefix + "rudder_kd", rudder_kd, 0.0, 100.0, "[rad/(m/s)]");
+  requireInRange(prefix + "max_rudder", max_rudder, 0.0, kHalfPi, "[rad]", true);
+  requireInRange(prefix + "track_spacing", track_spacing, 0.01, 1000.0, "[m]");
+  requireInRange(prefix + "track_length", track_length, std::max(10.0, 2.0 * track_spacing), 1e6,
+                 "[m] (at least 10 m and two track_spacing)");
+  requireInRange(prefix + "thrust", thrust, -1e6, 1e6, "[N]");
+  requireInRange(prefix + "odom_timeout", odom_timeout, 0.0, 3600.0, "[s]", true);
+  requireInRange(prefix + "max_depth", max_depth, 0.0, 1e5, "[m]", true);
+}
+
+PastTrack::PastTrack(double spacing, double length)
+    : spacing_(spacing), max_points_(std::max<size_t>(2, static_cast<size_t>(std::ceil(length / spacing)) + 1))
+{
+}
+
+void PastTrack::add(const Eigen::Vector2d& p_W)
+{
+  if (!p_W.allFinite())
+    return;
+  if (!points_.empty() && (p_W - points_.back()).norm() < spacing_)
+    return;
+  points_.push_back(p_W);
+  while (points_.size() > max_points_)
+    points_.pop_front();
+}
+
+PastTrack::Offset PastTrack::offset(const Eigen::Vector2d& p_W, const Eigen::Vector2d& v_W) const
+{
+  Offset best;
+  double best_distance2 = std::numeric_limits<double>::infinity();
+  const size_t last = points_.size() - 2;
+  for (size_t i = 0; i + 1 < points_.size(); ++i)
+  {
+    const Eigen::Vector2d& a = points_[i];
+    const Eigen::Vector2d d = points_[i + 1] - a;
+    double s = (p_W - a).dot(d) / d.squaredNorm();  // d is at least `spacing` long
+    if (i > 0)
+      s = std::max(s, 0.0);  // the oldest segment extends astern as a line
+    if (i < last)
+      s = std::min(s, 1.0);  // the newest extends ahead
+    const double distance2 = (p_W - (a + s * d)).squaredNorm();
+    if (distance2 < best_distance2)
+    {
+      best_distance2 = distance2;
+      const Eigen::Vector2d port(-d.y() / d.norm(), d.x() / d.norm());  // left of the direction of travel
+      best.offset = (p_W - a).dot(port);
+      best.rate = v_W.dot(port);
+      best.segment = i;
+    }
+  }
+  return best;
+}
+
+DepthAutopilot::DepthAutopilot(const DepthAutopilotParams& params)
+    : p_(validated(params)), track_(params.track_spacing, params.track_length)
+{
+}
+
+void DepthAutopilot::setSetpoint(double depth)
+{
+  requireInRange("depth setpoint", depth, 0.0, p_.max_depth, "[m] (positive down)");
+  setpoint_ = depth;
+  has_setpoint_ = true;
+}
+
+bool DepthAutopilot::addVehicle(const VehicleMeasurement& m)
+{
+  if (!std::isfinite(m.t) || !m.p_W.allFinite() || !m.v_W.allFinite())
+    throw std::invalid_argument("vehicle odometry: the stamp, position and velocity must be finite");
+  if (has_vehicle_ && m.t <= vehicle_.t)
+    return false;
+  vehicle_ = m;
+  has_vehicle_ = true;
+  if (!has_setpoint_)
+  {
+    setpoint_ = std::max(0.0, -m.p_W.z());
+    has_setpoint_ = true;
+  }
+  return true;
+}
+
+void DepthAutopilot::addShip(const Eigen::Vector2d& p_W)
+{
+  if (!p_W.allFinite())
+    throw std::invalid_argument("ship position must be finite");
+  track_.add(p_W);
+}
+
+double DepthAutopilot::elevator(double error, double v_up, double dt, AutopilotCommand& out)
+{
+  const double max = p_.max_elevator;
+  const double pd = -p_.kp * error - p_.kd * v_up;
+  if (dt > 0.0)
+  {
+    // Conditional integration: while the output is saturated, integrate only back out of saturation.
+    const double step = -p_.ki * error * dt;
+    const double candidate = std::clamp(integral_ + step, -max, max);
+    const double u = pd + candidate;
+    const bool winding_up = std::abs(u) > max && step * u > 0.0;
+    if (!winding_up)
+      integral_ = candidate;
+  }
+  const double u = pd + integral_;
+  out.elevator_saturated = std::abs(u) > max;
+  out.integral = integral_;
+  return std::clamp(u, -max, max);
+}
+
+AutopilotCommand DepthAutopilot::update(double now)
+{
+  AutopilotCommand out;
+  if (!has_vehicle_)
+    return out;
+  if (now - vehicle_.t > p_.odom_timeout)
+  {
+    out.status = AutopilotCommand::Status::kStale;
+    return out;
+  }
+  out.status = AutopilotCommand::Status::kActive;
+  out.thrust = p_.thrust;
+  // Integrate over the time since the last integrated measurement, never across a stale gap.
+  double dt = 0.0;
+  if (integrated_)
+    dt = std::min(vehicle_.t - integrated_until_, p_.odom_timeout);
+  integrated_until_ = vehicle_.t;
+  integrated_ = true;
+  const double depth = -vehicle_.p_W.z();
+  out.depth_error = setpoint_ - depth;
+  out.elevator = elevator(out.depth_error, vehicle_.v_W.z(), dt, out);
+
+  if (p_.track_keeping && track_.usable())
+  {
+    const PastTrack::Offset o = track_.offset(vehicle_.p_W.head<2>(), vehicle_.v_W.head<2>());
+    out.tracking = true;
+    out.track_offset = o.offset;
+    out.track_offset_rate = o.rate;
+    out.rudder = std::clamp(-p_.rudder_kp * o.offset - p_.rudder_kd * o.rate, -p_.max_rudder, p_.max_rudder);
+  }
+  return out;
+}
+
+void DepthAutopilot::reset()
+{
+  track_.clear();
+  has_setpoint_ = false;
+  has_vehicle_ = false;
+  integrated_ = false;
+  integral_ = 0.0;
+}
+
+}  // namespace tow_sim

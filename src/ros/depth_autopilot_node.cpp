@@ -1,0 +1,185 @@
+#include "tow_sim/ros/depth_autopilot_node.h"
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+#include <stdexcept>
+
+#include "tow_sim/FinCommand.h"
+#include "tow_sim/core/params.h"
+
+namespace tow_sim
+{
+namespace
+{
+void readDouble(const ros::NodeHandle& pnh, const std::string& key, double& value, const char* unit)
+{
+  if (pnh.hasParam(key) && !pnh.getParam(key, value))
+    throw std::invalid_argument(pnh.resolveName(key) + ": must be a number " + unit);
+}
+
+DepthAutopilotParams readParams(const ros::NodeHandle& pnh)
+{
+  DepthAutopilotParams p;
+  readDouble(pnh, "kp", p.kp, "[rad/m]");
+  readDouble(pnh, "ki", p.ki, "[rad/(m s)]");
+  readDouble(pnh, "kd", p.kd, "[rad/(m/s)]");
+  readDouble(pnh, "max_elevator", p.max_elevator, "[rad]");
+  readDouble(pnh, "rudder_kp", p.rudder_kp, "[rad/m]");
+  readDouble(pnh, "rudder_kd", p.rudder_kd, "[rad/(m/s)]");
+  readDouble(pnh, "max_rudder", p.max_rudder, "[rad]");
+  readDouble(pnh, "track_spacing", p.track_spacing, "[m]");
+  readDouble(pnh, "track_length", p.track_length, "[m]");
+  readDouble(pnh, "thrust", p.thrust, "[N]");
+  readDouble(pnh, "odom_timeout", p.odom_timeout, "[s]");
+  readDouble(pnh, "max_depth", p.max_depth, "[m]");
+  if (pnh.hasParam("track_keeping") && !pnh.getParam("track_keeping", p.track_keeping))
+    throw std::invalid_argument(pnh.resolveName("track_keeping") + ": must be true or false");
+  p.validate(pnh.getNamespace() + "/");
+  return p;
+}
+
+double readRate(const ros::NodeHandle& pnh)
+{
+  double rate = 10.0;
+  readDouble(pnh, "rate", rate, "[Hz]");
+  requireInRange(pnh.resolveName("rate"), rate, 0.1, 1000.0, "[Hz]");
+  return rate;
+}
+
+std::string readFrame(const ros::NodeHandle& pnh)
+{
+  std::string frame = "odom";
+  if (pnh.hasParam("world_frame") && (!pnh.getParam("world_frame", frame) || frame.empty()))
+    throw std::invalid_argument(pnh.resolveName("world_frame") + ": must be a non-empty string");
+  return frame;
+}
+
+// Stamp in seconds; a zero stamp is taken as now.
+double stampOf(const std_msgs::Header& header)
+{
+  return (header.stamp.isZero() ? ros::Time::now() : header.stamp).toSec();
+}
+}  // namespace
+
+DepthAutopilotNode::DepthAutopilotNode(ros::NodeHandle nh, ros::NodeHandle pnh)
+    : nh_(nh),
+      pnh_(pnh),
+      params_(readParams(pnh)),
+      rate_(readRate(pnh)),
+      world_frame_(readFrame(pnh)),
+      autopilot_(params_)
+{
+  vehicle_sub_ = nh_.subscribe("vehicle/odom", 10, &DepthAutopilotNode::onVehicleOdometry, this);
+  ship_sub_ = nh_.subscribe("ship/odom", 50, &DepthAutopilotNode::onShipOdometry, this);
+  setpoint_sub_ = nh_.subscribe("autopilot/depth_setpoint", 10, &DepthAutopilotNode::onSetpoint, this);
+  fin_pub_ = nh_.advertise<tow_sim::FinCommand>("fins/command", 10);
+  timer_ = nh_.createTimer(ros::Duration(1.0 / rate_), &DepthAutopilotNode::tick, this);
+  ROS_INFO(
+      "depth_autopilot: kp %.3g rad/m, ki %.3g rad/(m s), kd %.3g rad/(m/s), elevator within +-%.3f rad; "
+      "track keeping %s; fins/command at %.1f Hz",
+      params_.kp, params_.ki, params_.kd, params_.max_elevator, params_.track_keeping ? "on" : "off", rate_);
+}
+
+bool DepthAutopilotNode::frameOk(const nav_msgs::Odometry& msg, const char* topic)
+{
+  if (msg.header.frame_id == world_frame_)
+    return true;
+  ROS_WARN_THROTTLE(2.0, "depth_autopilot: rejected %s: header.frame_id = '%s', expected ~world_frame = '%s'", topic,
+                    msg.header.frame_id.c_str(), world_frame_.c_str());
+  return false;
+}
+
+void DepthAutopilotNode::onVehicleOdometry(const nav_msgs::Odometry::ConstPtr& msg)
+{
+  try
+  {
+    if (!frameOk(*msg, "vehicle/odom"))
+      return;
+    const auto& p = msg->pose.pose.position;
+    const auto& o = msg->pose.pose.orientation;
+    const auto& v = msg->twist.twist.linear;
+    Eigen::Quaterniond q(o.w, o.x, o.y, o.z);
+    if (!std::isfinite(q.norm()) || std::abs(q.norm() - 1.0) > 0.01)
+    {
+      ROS_WARN_THROTTLE(2.0, "depth_autopilot: rejected vehicle/odom: pose.orientation must be a unit quaternion");
+      return;
+    }
+    VehicleMeasurement m;
+    m.t = stampOf(msg->header);
+    m.p_W = Eigen::Vector3d(p.x, p.y, p.z);
+    m.v_W = q.normalized() * Eigen::Vector3d(v.x, v.y, v.z);  // the twist is in the vehicle frame
+    const bool had_setpoint = autopilot_.hasSetpoint();
+    // tow_sim_node repeats a stamp while its simulation holds: ignored quietly; older ones are warned of.
+    if (autopilot_.hasVehicle() && m.t < autopilot_.vehicleStamp())
+      ROS_WARN_THROTTLE(2.0, "depth_autopilot: ignored vehicle/odom: its stamp is older than the previous one");
+    if (!autopilot_.addVehicle(m))
+      return;
+    if (!had_setpoint && !announced_hold_)
+    {
+      announced_hold_ = true;
+      ROS_INFO("depth_autopilot: no setpoint on %s yet: holding the first vehicle depth, %.2f m",
+               setpoint_sub_.getTopic().c_str(), autopilot_.setpoint());
+    }
+  }
+  catch (const std::exception& e)
+  {
+    ROS_WARN_THROTTLE(2.0, "depth_autopilot: rejected vehicle/odom: %s", e.what());
+  }
+}
+
+void DepthAutopilotNode::onShipOdometry(const nav_msgs::Odometry::ConstPtr& msg)
+{
+  try
+  {
+    if (!frameOk(*msg, "ship/odom"))
+      return;
+    autopilot_.addShip(Eigen::Vector2d(msg->pose.pose.position.x, msg->pose.pose.position.y));
+  }
+  catch (const std::exception& e)
+  {
+    ROS_WARN_THROTTLE(2.0, "depth_autopilot: rejected ship/odom: %s", e.what());
+  }
+}
+
+void DepthAutopilotNode::onSetpoint(const std_msgs::Float64::ConstPtr& msg)
+{
+  try
+  {
+    autopilot_.setSetpoint(msg->data);
+    announced_hold_ = true;
+    ROS_INFO("depth_autopilot: depth setpoint %.2f m", msg->data);
+  }
+  catch (const std::invalid_argument&)
+  {
+    ROS_WARN_THROTTLE(2.0,
+                      "depth_autopilot: rejected %s: data = %g is out of range: must be a finite number in "
+                      "[0, %g] [m] (depth, positive down); keeping %.2f m",
+                      setpoint_sub_.getTopic().c_str(), msg->data, params_.max_depth, autopilot_.setpoint());
+  }
+}
+
+void DepthAutopilotNode::tick(const ros::TimerEvent&)
+{
+  try
+  {
+    const AutopilotCommand c = autopilot_.update(ros::Time::now().toSec());
+    if (c.status == AutopilotCommand::Status::kWaiting)
+      ROS_INFO_THROTTLE(10.0, "depth_autopilot: waiting for %s; fins centred", vehicle_sub_.getTopic().c_str());
+    else if (c.status == AutopilotCommand::Status::kStale)
+      ROS_WARN_THROTTLE(2.0, "depth_autopilot: %s is older than ~odom_timeout = %.2f s: fins centred, no thrust",
+                        vehicle_sub_.getTopic().c_str(), params_.odom_timeout);
+    tow_sim::FinCommand cmd;
+    cmd.header.stamp = ros::Time::now();
+    cmd.rudder = c.rudder;
+    cmd.elevator = c.elevator;
+    cmd.thrust = c.thrust;
+    fin_pub_.publish(cmd);
+  }
+  catch (const std::exception& e)
+  {
+    ROS_ERROR_THROTTLE(2.0, "depth_autopilot: %s", e.what());
+  }
+}
+
+}  // namespace tow_sim

@@ -1,0 +1,310 @@
+// rostest of depth_autopilot_node in the loop with tow_sim_node (vehicle with a lifting wing,
+// config/autopilot_vehicle.yaml). The test plays the ship (2 m/s, then a 180 degree turn to port of radius
+// 400 m) and the clock. It steps the clock by 0.1 s and then waits until both nodes have published for
+// that step (vehicle/odom and fins/command), so the closed loop sees the same timing on a fast or a slow,
+// loaded machine.
+#include <gtest/gtest.h>
+
+#include <nav_msgs/Odometry.h>
+#include <ros/ros.h>
+#include <rosgraph_msgs/Clock.h>
+#include <std_msgs/Float64.h>
+#include <std_srvs/SetBool.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include "tow_sim/FinCommand.h"
+
+namespace
+{
+constexpr double kSpeed = 2.0;          // [m/s] ship
+constexpr double kTurnRadius = 400.0;   // [m]
+constexpr double kSettlingTime = 60.0;  // [s] documented in README.md: within 1 m of a 20 m step
+constexpr double kTolerance = 1.0;      // [m]
+
+class Loop
+{
+public:
+  Loop()
+  {
+    clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
+    ship_pub_ = nh_.advertise<nav_msgs::Odometry>("/ship/odom", 50);
+    setpoint_pub_ = nh_.advertise<std_msgs::Float64>("/autopilot/depth_setpoint", 5, true);
+    vehicle_sub_ = nh_.subscribe<nav_msgs::Odometry>("/vehicle/odom", 20,
+                                                     [this](const nav_msgs::Odometry::ConstPtr& m)
+                                                     {
+                                                       std::lock_guard<std::mutex> lock(mutex_);
+                                                       vehicle_ = *m;
+                                                       ++vehicle_count_;
+                                                     });
+    fin_sub_ = nh_.subscribe<tow_sim::FinCommand>("/fins/command", 20,
+                                                  [this](const tow_sim::FinCommand::ConstPtr& m)
+                                                  {
+                                                    std::lock_guard<std::mutex> lock(mutex_);
+                                                    fins_ = *m;
+                                                    ++fin_count_;
+                                                  });
+    spinner_.start();
+    publishClock();
+    const ros::WallTime give_up = ros::WallTime::now() + ros::WallDuration(60.0);
+    // /clock: tow_sim, the autopilot and this node (use_sim_time).
+    while ((ship_pub_.getNumSubscribers() < 2 || clock_pub_.getNumSubscribers() < 3 ||
+            setpoint_pub_.getNumSubscribers() < 1 || vehicle_sub_.getNumPublishers() < 1 ||
+            fin_sub_.getNumPublishers() < 1) &&
+           ros::WallTime::now() < give_up)
+      ros::WallDuration(0.05).sleep();
+    // tow_sim_node starts at the first ship odometry: tick until its vehicle odometry comes back.
+    while (ros::WallTime::now() < give_up)
+    {
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (vehicle_count_ > 0)
+          break;
+      }
+      tick();
+      ros::WallDuration(0.02).sleep();
+    }
+  }
+
+  // 0.1 s of simulated time: two clock ticks with ship odometry (20 Hz), then wait until tow_sim_node and
+  // the autopilot have both published for this step.
+  void step()
+  {
+    long vehicle0, fins0;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      vehicle0 = vehicle_count_;
+      fins0 = fin_count_;
+    }
+    tick();
+    tick();
+    const ros::WallTime give_up = ros::WallTime::now() + ros::WallDuration(5.0);
+    while (ros::WallTime::now() < give_up)
+    {
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        // Both 10 Hz timers fire once per 0.1 s of clock (in either order, so the vehicle's stamp, which
+        // trails the clock by odom_delay, may repeat; the count does not).
+        if (vehicle_count_ > vehicle0 && fin_count_ > fins0 && fins_.header.stamp.toSec() > time_ - 0.1 - 1e-6)
+          return;
+      }
+      ros::WallDuration(0.0005).sleep();
+    }
+    ++late_steps_;
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::printf("late step at %.2f s: vehicle/odom %ld -> %ld (stamp %.2f), fins/command %ld -> %ld (stamp %.2f)\n",
+                time_, vehicle0, vehicle_count_, vehicle_.header.stamp.toSec(), fins0, fin_count_,
+                fins_.header.stamp.toSec());
+  }
+
+  // 0.05 s of clock and ship odometry, without waiting.
+  void tick()
+  {
+    moveShip(0.05);
+    publishClock();
+    ship_pub_.publish(shipOdometry());
+  }
+
+  void run(
+      double seconds, const std::function<void()>& each = [] {})
+  {
+    const int steps = static_cast<int>(std::round(seconds / 0.1));
+    for (int i = 0; i < steps; ++i)
+    {
+      step();
+      each();
+    }
+  }
+
+  double depth()
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return -vehicle_.pose.pose.position.z;
+  }
+  tow_sim::FinCommand fins()
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return fins_;
+  }
+  void setpoint(double depth)
+  {
+    std_msgs::Float64 m;
+    m.data = depth;
+    setpoint_pub_.publish(m);
+  }
+
+  ros::NodeHandle nh_;
+  double time_ = 100.0;                                            // [s] the clock
+  double heading_ = 0.0, yaw_rate_ = 0.0, yaw_rate_target_ = 0.0;  // [rad], [rad/s]
+  int late_steps_ = 0;
+
+private:
+  // The ship of ship_motion_node: yaw rate follows its target with a 5 s lag.
+  void moveShip(double dt)
+  {
+    time_ += dt;
+    yaw_rate_ += (yaw_rate_target_ - yaw_rate_) * dt / 5.0;
+    heading_ += yaw_rate_ * dt;
+    x_ += kSpeed * std::cos(heading_) * dt;
+    y_ += kSpeed * std::sin(heading_) * dt;
+  }
+
+  nav_msgs::Odometry shipOdometry() const
+  {
+    nav_msgs::Odometry odom;
+    odom.header.stamp = ros::Time(time_);
+    odom.header.frame_id = "odom";
+    odom.child_frame_id = "ship";
+    odom.pose.pose.position.x = x_;
+    odom.pose.pose.position.y = y_;
+    odom.pose.pose.orientation.z = std::sin(0.5 * heading_);
+    odom.pose.pose.orientation.w = std::cos(0.5 * heading_);
+    odom.twist.twist.linear.x = kSpeed;
+    odom.twist.twist.angular.z = yaw_rate_;
+    return odom;
+  }
+
+  void publishClock()
+  {
+    rosgraph_msgs::Clock c;
+    c.clock = ros::Time(time_);
+    clock_pub_.publish(c);
+  }
+
+  double x_ = 0.0, y_ = 0.0;
+  std::mutex mutex_;
+  nav_msgs::Odometry vehicle_;
+  tow_sim::FinCommand fins_;
+  long vehicle_count_ = 0, fin_count_ = 0;
+  ros::AsyncSpinner spinner_{ 2 };
+  ros::Publisher clock_pub_, ship_pub_, setpoint_pub_;
+  ros::Subscriber vehicle_sub_, fin_sub_;
+};
+
+std::unique_ptr<Loop> loop;
+
+TEST(DepthAutopilotNode, ReachesAStepSetpointAndHoldsItThroughA180DegreeTurn)
+{
+  const ros::WallTime wall_start = ros::WallTime::now();
+  // Steady tow: without a setpoint the autopilot holds the first depth it sees.
+  loop->run(5.0);
+  const double first = loop->depth();
+  double drift = 0.0;
+  loop->run(15.0, [&] { drift = std::max(drift, std::abs(loop->depth() - first)); });
+  std::printf("steady tow at %.2f m; held within %.3f m for 15 s without a setpoint\n", first, drift);
+  EXPECT_GT(first, 100.0);
+  EXPECT_LT(drift, 0.5);
+
+  // 20 m shallower: settle within the documented time, then hold until the turn.
+  const double target = first - 20.0;
+  loop->setpoint(target);
+  const double t_step = loop->time_;
+  double last_outside = t_step, max_elevator = 0.0;
+  loop->run(kSettlingTime + 40.0,
+            [&]
+            {
+              if (std::abs(loop->depth() - target) > kTolerance)
+                last_outside = loop->time_;
+              max_elevator = std::max(max_elevator, std::abs(loop->fins().elevator));
+            });
+  const double settling = last_outside - t_step;
+  std::printf("setpoint %.2f m (20 m up): within %.1f m after %.1f s (documented %.0f s); max |elevator| %.3f rad\n",
+              target, kTolerance, settling, kSettlingTime, max_elevator);
+  EXPECT_LE(settling, kSettlingTime);
+  EXPECT_GT(max_elevator, 0.05);  // the elevator did the work
+
+  // 180 degree turn to port at 2 m/s, radius 400 m, then straight on while the vehicle comes round.
+  const double turn_start = loop->time_;
+  double max_error = 0.0, max_rudder = 0.0, max_turn_elevator = 0.0;
+  auto watch = [&]
+  {
+    max_error = std::max(max_error, std::abs(loop->depth() - target));
+    max_rudder = std::max(max_rudder, std::abs(loop->fins().rudder));
+    max_turn_elevator = std::max(max_turn_elevator, std::abs(loop->fins().elevator));
+  };
+  loop->yaw_rate_target_ = kSpeed / kTurnRadius;
+  while (loop->heading_ < M_PI - 5.0 * loop->yaw_rate_ && loop->time_ < turn_start + 1000.0)
+    loop->run(0.1, watch);
+  loop->yaw_rate_target_ = 0.0;
+  const double turn_time = loop->time_ - turn_start;
+  loop->run(250.0, watch);
+  std::printf(
+      "turn: %.0f s to %.1f deg; then 250 s straight. Max depth error %.3f m (limit %.1f m); "
+      "max |elevator| %.3f rad, max |rudder| %.3f rad\n",
+      turn_time, loop->heading_ * 180.0 / M_PI, max_error, kTolerance, max_turn_elevator, max_rudder);
+  EXPECT_GT(loop->heading_, M_PI - 0.05);
+  EXPECT_LT(max_error, kTolerance);
+  EXPECT_GT(max_rudder, 0.01);  // track keeping was steering
+  std::printf("%.0f s simulated in %.0f s of wall time; %d of the 0.1 s steps waited more than 5 s for a node\n",
+              loop->time_ - 100.0, (ros::WallTime::now() - wall_start).toSec(), loop->late_steps_);
+}
+
+TEST(DepthAutopilotNode, BadSetpointsAreIgnoredAndStaleOdometryCentresTheFins)
+{
+  const double held = loop->depth();
+  loop->setpoint(-5.0);
+  loop->run(1.0);
+  loop->setpoint(std::numeric_limits<double>::quiet_NaN());
+  loop->run(1.0);
+  loop->setpoint(20000.0);
+  double max_error = 0.0;
+  loop->run(20.0, [&] { max_error = std::max(max_error, std::abs(loop->depth() - held)); });
+  std::printf("after setpoints -5, NaN and 20000 m: depth within %.3f m of %.2f m\n", max_error, held);
+  EXPECT_LT(max_error, kTolerance);
+
+  // Pause the simulation: vehicle/odom keeps its stamp, so after odom_timeout the fins are centred.
+  ros::ServiceClient pause = loop->nh_.serviceClient<std_srvs::SetBool>("/tow_sim/set_paused");
+  std_srvs::SetBool srv;
+  srv.request.data = true;
+  ASSERT_TRUE(pause.call(srv));
+  tow_sim::FinCommand fins;
+  const double paused_at = loop->time_;
+  const ros::WallTime give_up = ros::WallTime::now() + ros::WallDuration(30.0);
+  while (ros::WallTime::now() < give_up)
+  {
+    loop->tick();  // the ship and the clock go on; the autopilot keeps publishing
+    ros::WallDuration(0.01).sleep();
+    fins = loop->fins();
+    if (fins.header.stamp.toSec() > paused_at + 1.0 && fins.elevator == 0.0 && fins.rudder == 0.0)
+      break;
+  }
+  std::printf("paused at %.1f s: fins centred at %.2f s (odom_timeout 1 s)\n", paused_at, fins.header.stamp.toSec());
+  EXPECT_EQ(fins.elevator, 0.0);
+  EXPECT_EQ(fins.rudder, 0.0);
+  EXPECT_EQ(fins.thrust, 0.0);
+  srv.request.data = false;
+  EXPECT_TRUE(pause.call(srv));
+}
+
+TEST(DepthAutopilotNode, BadParameterExitsNamingIt)
+{
+  loop->nh_.setParam("/bad/depth_autopilot/kp", -1.0);
+  FILE* pipe = popen(DEPTH_AUTOPILOT_NODE_BINARY " __ns:=/bad __name:=depth_autopilot 2>&1", "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string output;
+  char buffer[512];
+  while (fgets(buffer, sizeof(buffer), pipe))
+    output += buffer;
+  EXPECT_NE(pclose(pipe), 0);
+  EXPECT_NE(output.find("/bad/depth_autopilot/kp = -1 is out of range"), std::string::npos) << output;
+  EXPECT_NE(output.find("[0, 10] [rad/m]"), std::string::npos) << output;
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "test_depth_autopilot");
+  loop = std::make_unique<Loop>();
+  const int result = RUN_ALL_TESTS();
+  loop.reset();
+  return result;
+}
