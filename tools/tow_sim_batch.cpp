@@ -9,6 +9,7 @@
 #include <cstring>
 #include <exception>
 #include <fstream>
+#include <limits>
 #include <memory>
 #include <string>
 #include <sys/stat.h>
@@ -130,30 +131,76 @@ int main(int argc, char** argv)
       liftAboveSeabed(*seabed, start);  // the equilibrium and the line know nothing of the bottom
     sim.reset(0.0, start);
 
+    std::unique_ptr<DepthAutopilot> autopilot;
+    if (sc.autopilot.enabled)
+      autopilot = std::make_unique<DepthAutopilot>(sc.autopilot.params);
+    size_t next_setpoint = 0;
+    long ticks = 0;
+    double max_length_error = 0.0;
+    // Everything due up to t_target in time order: commands, autopilot setpoints and autopilot ticks
+    // (each at its own time), then the simulation to t_target.
+    auto runTo = [&](double t_target) {
+      const double never = std::numeric_limits<double>::infinity();
+      for (;;)
+      {
+        const double t_command = next_command < sc.commands.size() ? sc.commands[next_command].t : never;
+        const double t_setpoint =
+            autopilot && next_setpoint < sc.autopilot.setpoints.size() ? sc.autopilot.setpoints[next_setpoint].t : never;
+        const double t_tick = autopilot ? ticks / sc.autopilot.rate : never;
+        const double t_next = std::min({ t_command, t_setpoint, t_tick });
+        if (t_next > t_target)
+          break;
+        max_length_error = std::max(max_length_error, sim.advanceTo(t_next).max_length_error);
+        if (t_next == t_command)
+        {
+          const CommandEvent& c = sc.commands[next_command++];
+          if (!autopilot)
+            vehicle->command(c.t, c.rudder, c.elevator, c.thrust);
+          if (sc.config.winch.enabled)
+            sim.setWinchCommand(c.payout_rate);
+        }
+        else if (t_next == t_setpoint)
+        {
+          const AutopilotSetpoint& sp = sc.autopilot.setpoints[next_setpoint++];
+          if (sp.altitude)
+            autopilot->setAltitudeSetpoint(sp.value);
+          else
+            autopilot->setSetpoint(sp.value);
+        }
+        else
+        {
+          ++ticks;
+          const VehicleOutputs o =
+              vehicle->outputs(t_next, sim.elementKinematics(model->segments()), model->environment());
+          VehicleMeasurement m;
+          m.t = t_next;
+          m.p_W = o.p_cg_W;
+          m.v_W = o.v_cg_W;
+          if (seabed)
+            m.altitude = seabed->altitude(o.p_cg_W);
+          autopilot->addVehicle(m);
+          autopilot->addShip(path.poseAt(t_next).head<2>());
+          const AutopilotCommand c = autopilot->update(t_next);
+          vehicle->command(t_next, c.rudder, c.elevator, c.thrust);
+        }
+      }
+      max_length_error = std::max(max_length_error, sim.advanceTo(t_target).max_length_error);
+    };
+
     series << "t,ship_x,ship_y,ship_z,ship_speed,vehicle_x,vehicle_y,vehicle_z,vehicle_roll,vehicle_pitch,"
               "vehicle_yaw,depth,layback,diversion,diversion_rate,tension_ship,tension_vehicle,rudder,elevator,"
-              "thrust,max_length_error,cable_length,payout_rate,vehicle_altitude,seabed_contacts\n";
+              "thrust,max_length_error,cable_length,payout_rate,vehicle_altitude,seabed_contacts,depth_setpoint\n";
     shapes << "t,joint,x,y,z,tension\n";
     series.precision(10);
     shapes.precision(10);
     AttitudeHold attitude;
     Progress progress(sc.duration);
-    double max_length_error = 0.0;
     const long outputs = std::lround(sc.duration / sc.output_interval);
     const long shapes_every = std::max(1L, std::lround(sc.shape_interval / sc.output_interval));
     for (long i = 0; i <= outputs; ++i)
     {
       const double t = std::min(sc.duration, i * sc.output_interval);
-      // Commands due before this output take effect at their own time.
-      while (next_command < sc.commands.size() && sc.commands[next_command].t <= t)
-      {
-        const CommandEvent& c = sc.commands[next_command++];
-        max_length_error = std::max(max_length_error, sim.advanceTo(c.t).max_length_error);
-        vehicle->command(c.t, c.rudder, c.elevator, c.thrust);
-        if (sc.config.winch.enabled)
-          sim.setWinchCommand(c.payout_rate);
-      }
-      max_length_error = std::max(max_length_error, sim.advanceTo(t).max_length_error);
+      runTo(t);
       const int nu = model->segments();  // the winch may have changed it
       const VehicleOutputs o = vehicle->outputs(t, sim.elementKinematics(nu), model->environment());
       const Eigen::Vector3d pose = path.poseAt(t);
@@ -181,7 +228,10 @@ int main(int argc, char** argv)
         for (int j = 1; j < joints.cols(); ++j)
           contacts += seabed->altitude(joints.col(j)) < 0.0 ? 1 : 0;
       }
-      series << ',' << contacts << '\n';
+      series << ',' << contacts << ',';
+      if (autopilot && autopilot->hasSetpoint())
+        series << autopilot->setpoint();  // blank without an autopilot
+      series << '\n';
       max_length_error = 0.0;
       if (i % shapes_every == 0 || i == outputs)
         for (int j = 0; j < joints.cols(); ++j)

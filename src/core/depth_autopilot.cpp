@@ -90,16 +90,34 @@ void DepthAutopilot::setSetpoint(double depth)
   requireInRange("depth setpoint", depth, 0.0, p_.max_depth, "[m] (positive down)");
   setpoint_ = depth;
   has_setpoint_ = true;
+  altitude_mode_ = false;
+}
+
+void DepthAutopilot::setAltitudeSetpoint(double altitude)
+{
+  requireInRange("altitude setpoint", altitude, 0.0, p_.max_depth, "[m] (above the seabed)");
+  altitude_setpoint_ = altitude;
+  altitude_mode_ = true;
+  if (has_vehicle_ && std::isfinite(vehicle_.altitude))
+  {
+    setpoint_ = std::max(0.0, -vehicle_.p_W.z() + vehicle_.altitude - altitude_setpoint_);
+    has_setpoint_ = true;
+  }
 }
 
 bool DepthAutopilot::addVehicle(const VehicleMeasurement& m)
 {
-  if (!std::isfinite(m.t) || !m.p_W.allFinite() || !m.v_W.allFinite())
+  if (!std::isfinite(m.t) || !m.p_W.allFinite() || !m.v_W.allFinite() || std::isinf(m.altitude))
     throw std::invalid_argument("vehicle odometry: the stamp, position and velocity must be finite");
   if (has_vehicle_ && m.t <= vehicle_.t)
     return false;
   vehicle_ = m;
   has_vehicle_ = true;
+  if (altitude_mode_ && std::isfinite(m.altitude))
+  {
+    setpoint_ = std::max(0.0, -m.p_W.z() + m.altitude - altitude_setpoint_);
+    has_setpoint_ = true;
+  }
   if (!has_setpoint_)
   {
     setpoint_ = std::max(0.0, -m.p_W.z());
@@ -172,6 +190,7 @@ void DepthAutopilot::reset()
 {
   track_.clear();
   has_setpoint_ = false;
+  altitude_mode_ = false;
   has_vehicle_ = false;
   integrated_ = false;
   integral_ = 0.0;

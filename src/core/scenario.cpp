@@ -145,6 +145,56 @@ Scenario loadScenarioUnguarded(const YAML::Node& root, const std::string& base_d
   std::stable_sort(sc.commands.begin(), sc.commands.end(),
                    [](const CommandEvent& a, const CommandEvent& b) { return a.t < b.t; });
 
+  if (top.has("autopilot"))
+  {
+    Section a = top.child("autopilot");
+    AutopilotScenario& ap = sc.autopilot;
+    ap.enabled = true;
+    DepthAutopilotParams& p = ap.params;
+    a.read("rate", ap.rate);
+    a.read("kp", p.kp);
+    a.read("ki", p.ki);
+    a.read("kd", p.kd);
+    a.read("max_elevator", p.max_elevator);
+    a.read("track_keeping", p.track_keeping);
+    a.read("rudder_kp", p.rudder_kp);
+    a.read("rudder_kd", p.rudder_kd);
+    a.read("max_rudder", p.max_rudder);
+    a.read("track_spacing", p.track_spacing);
+    a.read("track_length", p.track_length);
+    a.read("thrust", p.thrust);
+    a.read("odom_timeout", p.odom_timeout);
+    a.read("max_depth", p.max_depth);
+    for (Section item : a.items("setpoints"))
+    {
+      AutopilotSetpoint sp;
+      item.read("t", sp.t);
+      const bool has_depth = item.has("depth"), has_altitude = item.has("altitude");
+      if (has_depth == has_altitude)
+        fail(item.name(), "needs exactly one of depth [m] and altitude [m]");
+      sp.altitude = has_altitude;
+      item.read(has_altitude ? "altitude" : "depth", sp.value);
+      item.finish();
+      requireInRange(item.path("t"), sp.t, 0.0, 1e7, "[s]");
+      requireInRange(item.path(has_altitude ? "altitude" : "depth"), sp.value, 0.0, p.max_depth, "[m]");
+      if (sp.altitude && sc.config.seabed.type == SeabedParams::Type::kNone)
+        fail(item.path("altitude"), "needs a seabed: seabed.type is none");
+      ap.setpoints.push_back(sp);
+    }
+    a.finish();
+    requireInRange(a.path("rate"), ap.rate, 0.1, 1000.0, "[Hz]");
+    p.validate(a.name() + ".");
+    std::stable_sort(ap.setpoints.begin(), ap.setpoints.end(),
+                     [](const AutopilotSetpoint& x, const AutopilotSetpoint& y) { return x.t < y.t; });
+    for (std::size_t i = 0; i < sc.commands.size(); ++i)
+    {
+      const CommandEvent& c = sc.commands[i];
+      if (c.rudder != 0.0 || c.elevator != 0.0 || c.thrust != 0.0)
+        fail("commands[" + std::to_string(i) + "]", "rudder, elevator and thrust belong to the autopilot when there "
+                                                    "is one (payout_rate alone is allowed)");
+    }
+  }
+
   if (top.has("initial_state"))
   {
     Section init = top.child("initial_state");
@@ -236,6 +286,34 @@ YAML::Node toYaml(const Scenario& sc)
     n["thrust"] = e.thrust;
     n["payout_rate"] = e.payout_rate;
     root["commands"].push_back(n);
+  }
+  if (sc.autopilot.enabled)
+  {
+    const AutopilotScenario& ap = sc.autopilot;
+    const DepthAutopilotParams& p = ap.params;
+    YAML::Node a = root["autopilot"];
+    a["rate"] = ap.rate;
+    a["kp"] = p.kp;
+    a["ki"] = p.ki;
+    a["kd"] = p.kd;
+    a["max_elevator"] = p.max_elevator;
+    a["track_keeping"] = p.track_keeping;
+    a["rudder_kp"] = p.rudder_kp;
+    a["rudder_kd"] = p.rudder_kd;
+    a["max_rudder"] = p.max_rudder;
+    a["track_spacing"] = p.track_spacing;
+    a["track_length"] = p.track_length;
+    a["thrust"] = p.thrust;
+    a["odom_timeout"] = p.odom_timeout;
+    a["max_depth"] = p.max_depth;
+    a["setpoints"] = YAML::Node(YAML::NodeType::Sequence);
+    for (const AutopilotSetpoint& sp : ap.setpoints)
+    {
+      YAML::Node n;
+      n["t"] = sp.t;
+      n[sp.altitude ? "altitude" : "depth"] = sp.value;
+      a["setpoints"].push_back(n);
+    }
   }
   YAML::Node init = root["initial_state"];
   init["type"] = sc.start == Scenario::Start::kEquilibrium ? "equilibrium"

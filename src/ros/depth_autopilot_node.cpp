@@ -73,6 +73,9 @@ DepthAutopilotNode::DepthAutopilotNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   vehicle_sub_ = nh_.subscribe("vehicle/odom", 10, &DepthAutopilotNode::onVehicleOdometry, this);
   ship_sub_ = nh_.subscribe("ship/odom", 50, &DepthAutopilotNode::onShipOdometry, this);
   setpoint_sub_ = nh_.subscribe("autopilot/depth_setpoint", 10, &DepthAutopilotNode::onSetpoint, this);
+  altitude_setpoint_sub_ =
+      nh_.subscribe("autopilot/altitude_setpoint", 10, &DepthAutopilotNode::onAltitudeSetpoint, this);
+  state_sub_ = nh_.subscribe("cable/state", 10, &DepthAutopilotNode::onCableState, this);
   fin_pub_ = nh_.advertise<tow_sim::FinCommand>("fins/command", 10);
   timer_ = nh_.createTimer(ros::Duration(1.0 / rate_), &DepthAutopilotNode::tick, this);
   ROS_INFO(
@@ -109,6 +112,14 @@ void DepthAutopilotNode::onVehicleOdometry(const nav_msgs::Odometry::ConstPtr& m
     m.t = stampOf(msg->header);
     m.p_W = Eigen::Vector3d(p.x, p.y, p.z);
     m.v_W = q.normalized() * Eigen::Vector3d(v.x, v.y, v.z);  // the twist is in the vehicle frame
+    // Altitude from the newest cable/state of the same moment (within 0.5 s), moved by the depth change
+    // since (a flat bottom over that short time).
+    if (have_altitude_ && std::abs(m.t - altitude_stamp_) <= 0.5)
+      m.altitude = altitude_ - (-p.z - altitude_depth_);
+    else if (autopilot_.altitudeMode())
+      ROS_WARN_THROTTLE(5.0, "depth_autopilot: altitude mode but no recent cable/state with a seabed: holding the "
+                             "last depth setpoint, %.2f m",
+                        autopilot_.setpoint());
     const bool had_setpoint = autopilot_.hasSetpoint();
     // tow_sim_node repeats a stamp while its simulation holds: ignored quietly; older ones are warned of.
     if (autopilot_.hasVehicle() && m.t < autopilot_.vehicleStamp())
@@ -157,6 +168,33 @@ void DepthAutopilotNode::onSetpoint(const std_msgs::Float64::ConstPtr& msg)
                       "[0, %g] [m] (depth, positive down); keeping %.2f m",
                       setpoint_sub_.getTopic().c_str(), msg->data, params_.max_depth, autopilot_.setpoint());
   }
+}
+
+void DepthAutopilotNode::onAltitudeSetpoint(const std_msgs::Float64::ConstPtr& msg)
+{
+  try
+  {
+    autopilot_.setAltitudeSetpoint(msg->data);
+    announced_hold_ = true;
+    ROS_INFO("depth_autopilot: altitude setpoint %.2f m above the seabed", msg->data);
+  }
+  catch (const std::invalid_argument&)
+  {
+    ROS_WARN_THROTTLE(2.0,
+                      "depth_autopilot: rejected %s: data = %g is out of range: must be a finite number in "
+                      "[0, %g] [m] (above the seabed)",
+                      altitude_setpoint_sub_.getTopic().c_str(), msg->data, params_.max_depth);
+  }
+}
+
+void DepthAutopilotNode::onCableState(const tow_sim::CableState::ConstPtr& msg)
+{
+  if (!msg->seabed_present || !std::isfinite(msg->vehicle_altitude) || !std::isfinite(msg->vehicle_depth))
+    return;
+  have_altitude_ = true;
+  altitude_ = msg->vehicle_altitude;
+  altitude_depth_ = msg->vehicle_depth;
+  altitude_stamp_ = stampOf(msg->header);
 }
 
 void DepthAutopilotNode::tick(const ros::TimerEvent&)

@@ -45,6 +45,8 @@ std::vector<std::vector<std::string>> readCsv(const std::string& path)
     std::string cell;
     while (std::getline(ss, cell, ','))
       cells.push_back(cell);
+    if (!line.empty() && line.back() == ',')
+      cells.push_back("");  // a blank last cell
     rows.push_back(cells);
   }
   return rows;
@@ -63,9 +65,9 @@ TEST(Batch, EveryScenarioRunsAndWritesTheDocumentedColumns)
                                              "vehicle_yaw", "depth", "layback", "diversion", "diversion_rate",
                                              "tension_ship", "tension_vehicle", "rudder", "elevator", "thrust",
                                              "max_length_error", "cable_length", "payout_rate",
-                                             "vehicle_altitude", "seabed_contacts" };
+                                             "vehicle_altitude", "seabed_contacts", "depth_setpoint" };
   for (const std::string name : { "report_elevator_step", "turn_180", "speed_change", "zigzag", "winch_payout",
-                                  "seabed_shoal", "sheared_current" })
+                                  "seabed_shoal", "sheared_current", "autopilot_depth_turn", "autopilot_terrain" })
   {
     const std::string scenario = std::string(TOW_SIM_SOURCE_DIR) + "/scenarios/" + name + ".yaml";
     const std::string out = "/tmp/tow_sim_test_batch_" + name;
@@ -85,6 +87,8 @@ TEST(Batch, EveryScenarioRunsAndWritesTheDocumentedColumns)
         const std::string& cell = rows[r][c];
         if (cell.empty() && columns[c] == "vehicle_altitude" && sc.config.seabed.type == SeabedParams::Type::kNone)
           continue;  // documented: blank without a seabed
+        if (cell.empty() && columns[c] == "depth_setpoint" && !sc.autopilot.enabled)
+          continue;  // and without an autopilot
         ASSERT_TRUE(std::isfinite(std::stod(cell))) << name << " row " << r << " column " << columns[c];
       }
     }
@@ -140,6 +144,26 @@ TEST(Batch, ReportsScenarioEffectsWithTheRightSense)
   EXPECT_GT(column("seabed_shoal", 24, -1), 0.0);  // the cable drags on the bottom
   // Sheared cross-current from the south: the vehicle is carried to port of the eastbound ship.
   EXPECT_GT(column("sheared_current", 13, 250), 5.0);
+  // The autopilot in the loop, offline: 20 m up within 60 s of the step and held within 1 m through the
+  // turn (the rostest of depth_autopilot_node checks the same through ROS); 25 m over the ridge.
+  const auto turn = readCsv("/tmp/tow_sim_test_batch_autopilot_depth_turn/timeseries.csv");
+  double worst = 0.0;
+  for (size_t r = 161; r < turn.size(); ++r)
+    worst = std::max(worst, std::abs(std::stod(turn[r][11]) - 221.8));
+  const auto ridge = readCsv("/tmp/tow_sim_test_batch_autopilot_terrain/timeseries.csv");
+  double lowest = 1e9, highest = 0.0;
+  for (size_t r = 101; r < ridge.size(); ++r)
+  {
+    lowest = std::min(lowest, std::stod(ridge[r][23]));
+    highest = std::max(highest, std::stod(ridge[r][23]));
+  }
+  std::printf("autopilot offline: depth error from 60 s after the step through the turn <= %.2f m; altitude over "
+              "the ridge %.2f .. %.2f m (setpoint 25 m)\n",
+              worst, lowest, highest);
+  EXPECT_LT(worst, 1.0);
+  EXPECT_GT(lowest, 22.0);
+  EXPECT_LT(highest, 28.0);
+  EXPECT_GT(column("autopilot_terrain", 11, 200) - column("autopilot_terrain", 11, 800), 30.0);  // it climbed
 }
 
 TEST(Batch, BadScenariosAreRefusedNamingTheKey)
@@ -164,6 +188,9 @@ TEST(Batch, BadScenariosAreRefusedNamingTheKey)
   refuse("seabed: {type: grid, grid_file: no_such_grid.yaml}", "seabed.grid_file: /tmp/no_such_grid.yaml");
   refuse("seabed: {type: flat, depth: -3}", "seabed.depth = -3");
   refuse("environment: {current_profile: [{depth: 50}, {depth: 20}]}", "current_profile[1].depth = 20");
+  refuse("autopilot: {kp: -1}", "autopilot.kp = -1");
+  refuse("autopilot: {setpoints: [{t: 0, altitude: 10}]}", "autopilot.setpoints[0].altitude: needs a seabed");
+  refuse("autopilot: {}\ncommands: [{t: 5, elevator: 0.1}]", "commands[0]: rudder, elevator and thrust belong");
   int status = 0;
   run(std::string(TOW_SIM_BATCH_BINARY) + " --scenario", &status);
   EXPECT_EQ(status, 2);

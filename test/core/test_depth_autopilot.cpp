@@ -183,6 +183,34 @@ TEST(DepthAutopilot, HoldsTheFirstDepthWithoutASetpoint)
   EXPECT_NEAR(ap.update(1.0).elevator, 0.0, 1e-15);
 }
 
+TEST(DepthAutopilot, AltitudeModeTurnsTheAltitudeIntoADepthSetpoint)
+{
+  DepthAutopilot ap(noTrack());
+  ap.setAltitudeSetpoint(10.0);
+  VehicleMeasurement m = at(0.0, 100.0);
+  m.altitude = 30.0;  // 20 m higher than wanted: go to 120 m, i.e. too shallow, dive
+  ap.addVehicle(m);
+  EXPECT_TRUE(ap.altitudeMode());
+  EXPECT_DOUBLE_EQ(ap.setpoint(), 120.0);
+  const AutopilotCommand c = ap.update(0.0);
+  EXPECT_NEAR(c.depth_error, 20.0, 1e-12);
+  EXPECT_LT(c.elevator, 0.0);
+  // The bottom rises under the vehicle: at the same depth 4 m of altitude is 6 m too low: climb.
+  m = at(1.0, 100.0);
+  m.altitude = 4.0;
+  ap.addVehicle(m);
+  EXPECT_DOUBLE_EQ(ap.setpoint(), 94.0);
+  EXPECT_GT(ap.update(1.0).elevator, 0.0);
+  // No altitude (no seabed in sight): the last depth setpoint is held.
+  ap.addVehicle(at(2.0, 97.0));
+  EXPECT_DOUBLE_EQ(ap.setpoint(), 94.0);
+  // A depth setpoint leaves altitude mode; a bad altitude setpoint is refused.
+  ap.setSetpoint(50.0);
+  EXPECT_FALSE(ap.altitudeMode());
+  EXPECT_THROW(ap.setAltitudeSetpoint(-1.0), std::invalid_argument);
+  EXPECT_THROW(ap.setAltitudeSetpoint(std::numeric_limits<double>::quiet_NaN()), std::invalid_argument);
+}
+
 TEST(DepthAutopilot, StaleOdometryCentresTheFins)
 {
   DepthAutopilotParams p;

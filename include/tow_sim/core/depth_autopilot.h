@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 
 #include <deque>
+#include <limits>
 #include <string>
 
 namespace tow_sim
@@ -73,6 +74,7 @@ struct VehicleMeasurement
   double t = 0.0;                                 // [s] stamp
   Eigen::Vector3d p_W = Eigen::Vector3d::Zero();  // [m] CG position, world ENU (z up, depth = -z)
   Eigen::Vector3d v_W = Eigen::Vector3d::Zero();  // [m/s] CG velocity, world ENU
+  double altitude = std::numeric_limits<double>::quiet_NaN();  // [m] CG above the seabed; NaN: unknown
 };
 
 struct AutopilotCommand
@@ -102,6 +104,12 @@ public:
 
   // Depth setpoint [m], positive down, in [0, max_depth]; throws std::invalid_argument otherwise.
   void setSetpoint(double depth);
+  // Altitude setpoint [m] above the seabed, in [0, max_depth]; throws std::invalid_argument otherwise.
+  // In altitude mode each measurement that carries an altitude turns it into the depth setpoint
+  // depth + altitude - altitude setpoint; without one the last such depth is held.
+  void setAltitudeSetpoint(double altitude);
+  bool altitudeMode() const { return altitude_mode_; }
+  double altitudeSetpoint() const { return altitude_setpoint_; }
   bool hasSetpoint() const { return has_setpoint_; }
   double setpoint() const { return setpoint_; }
 
@@ -128,7 +136,9 @@ private:
   DepthAutopilotParams p_;
   PastTrack track_;
   bool has_setpoint_ = false;
-  double setpoint_ = 0.0;
+  double setpoint_ = 0.0;  // [m] depth
+  bool altitude_mode_ = false;
+  double altitude_setpoint_ = 0.0;  // [m]
   bool has_vehicle_ = false;
   VehicleMeasurement vehicle_;
   double integrated_until_ = 0.0;  // [s] stamp of the measurement last integrated

@@ -9,6 +9,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "tow_sim/core/config.h"
+#include "tow_sim/core/depth_autopilot.h"
 #include "tow_sim/core/ship_track.h"
 
 namespace tow_sim
@@ -44,6 +45,21 @@ struct CommandEvent
   double payout_rate = 0.0;  // [m/s] winch, positive pays out (needs winch.enabled)
 };
 
+// The depth autopilot in the loop (tow_sim_batch): its gains, its rate and a setpoint schedule.
+struct AutopilotSetpoint
+{
+  double t = 0.0;          // [s] from this time on
+  bool altitude = false;   // false: `value` is a depth [m, positive down]; true: an altitude above the seabed [m]
+  double value = 0.0;      // [m]
+};
+struct AutopilotScenario
+{
+  bool enabled = false;
+  DepthAutopilotParams params;
+  double rate = 10.0;  // [Hz] fin commands, [0.1, 1000]
+  std::vector<AutopilotSetpoint> setpoints;  // sorted by time; none: hold the first depth
+};
+
 struct Scenario
 {
   SimulationConfig config;
@@ -52,6 +68,7 @@ struct Scenario
   double start_heading = 0.0;                                      // [rad] ENU, from +x counter-clockwise
   std::vector<Manoeuvre> manoeuvres;                               // one after the other
   std::vector<CommandEvent> commands;                              // sorted by time
+  AutopilotScenario autopilot;                                     // drives the fins when enabled
   enum class Start
   {
     kEquilibrium,

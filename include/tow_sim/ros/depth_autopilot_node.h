@@ -8,6 +8,7 @@
 
 #include <string>
 
+#include "tow_sim/CableState.h"
 #include "tow_sim/core/depth_autopilot.h"
 
 namespace tow_sim
@@ -23,6 +24,8 @@ private:
   void onVehicleOdometry(const nav_msgs::Odometry::ConstPtr& msg);
   void onShipOdometry(const nav_msgs::Odometry::ConstPtr& msg);
   void onSetpoint(const std_msgs::Float64::ConstPtr& msg);
+  void onAltitudeSetpoint(const std_msgs::Float64::ConstPtr& msg);
+  void onCableState(const tow_sim::CableState::ConstPtr& msg);
   void tick(const ros::TimerEvent& event);
   bool frameOk(const nav_msgs::Odometry& msg, const char* topic);
 
@@ -32,7 +35,10 @@ private:
   std::string world_frame_ = "odom";  // frame of both odometries
   DepthAutopilot autopilot_;
   bool announced_hold_ = false;
-  ros::Subscriber vehicle_sub_, ship_sub_, setpoint_sub_;
+  ros::Subscriber vehicle_sub_, ship_sub_, setpoint_sub_, altitude_setpoint_sub_, state_sub_;
+  // The newest cable/state with a seabed: the vehicle's altitude and depth, and their stamp.
+  bool have_altitude_ = false;
+  double altitude_ = 0.0, altitude_depth_ = 0.0, altitude_stamp_ = 0.0;  // [m], [m], [s]
   ros::Publisher fin_pub_;
   ros::Timer timer_;
 };
