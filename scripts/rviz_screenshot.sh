@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # Takes a screenshot of rviz showing the running demo, under a virtual X display (Xvfb).
-# Usage: scripts/rviz_screenshot.sh OUT.png [SECONDS_TO_RUN (default 40)] [manoeuvre (default turn)]
+# Usage: scripts/rviz_screenshot.sh OUT.png [SECONDS_TO_RUN (default 40)] [manoeuvre (default turn)] [config.yaml]
 # Needs a built workspace (make build); uses Xvfb and ImageMagick's import.
 set -euo pipefail
 out="$(realpath -m "${1:?usage: rviz_screenshot.sh OUT.png [seconds] [manoeuvre]}")"
 seconds="${2:-40}"
 manoeuvre="${3:-turn}"
+config="${4:-}"
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 ws="${WS:-$(realpath -m "$repo/../tow_sim_ws")}"
 export PATH=/usr/bin:/bin:$PATH
@@ -18,7 +19,8 @@ xvfb_pid=$!
 export DISPLAY="$display" LIBGL_ALWAYS_SOFTWARE=1
 port=$((11400 + RANDOM % 500))
 export ROS_MASTER_URI="http://localhost:$port"
-roslaunch -p "$port" tow_sim tow_sim.launch rviz:=true manoeuvre:="$manoeuvre" print_status:=false >/tmp/tow_sim_screenshot_launch.log 2>&1 &
+roslaunch -p "$port" tow_sim tow_sim.launch rviz:=true manoeuvre:="$manoeuvre" print_status:=false \
+  ${config:+config:="$(realpath "$config")"} >/tmp/tow_sim_screenshot_launch.log 2>&1 &
 launch_pid=$!
 cleanup() { kill "$launch_pid" 2>/dev/null || true; sleep 2; kill "$xvfb_pid" 2>/dev/null || true; }
 trap cleanup EXIT

@@ -119,24 +119,28 @@ visualization_msgs::MarkerArray makeMarkers(const Simulator& sim, const Vehicle&
   vehicle_label.color = grey(1.0);
   array.markers.push_back(vehicle_label);
 
-  // The seabed around the vehicle: a 800 m square of triangles, 40 m apart, on the bottom.
+  // The seabed around the vehicle: an 800 m square of grid lines 40 m apart, on the bottom (lines are
+  // unlit, so they read at any viewing angle, like the sea surface grid).
   const Seabed* seabed = sim.model().seabed();
   if (seabed)
   {
-    Marker bottom = baseMarker(header, "seabed", 0, Marker::TRIANGLE_LIST);
-    bottom.scale.x = bottom.scale.y = bottom.scale.z = 1.0;
-    bottom.color.r = 0.55;
-    bottom.color.g = 0.45;
-    bottom.color.b = 0.3;
-    bottom.color.a = 0.6;
+    Marker bottom = baseMarker(header, "seabed", 0, Marker::LINE_LIST);
+    bottom.scale.x = 0.6;
+    bottom.color.r = 0.85;  // sand
+    bottom.color.g = 0.75;
+    bottom.color.b = 0.5;
+    bottom.color.a = 1.0;
     const double step = 40.0, half = 400.0;
     const double x0 = std::round(out.p_cg_W.x() / step) * step - half, y0 = std::round(out.p_cg_W.y() / step) * step - half;
     auto at = [&](double x, double y) { return ros_conv::toPoint(Eigen::Vector3d(x, y, seabed->bottomZ(x, y))); };
-    for (double x = x0; x < x0 + 2 * half; x += step)
-      for (double y = y0; y < y0 + 2 * half; y += step)
-        for (const auto& p : { at(x, y), at(x + step, y), at(x + step, y + step), at(x, y), at(x + step, y + step),
-                               at(x, y + step) })
-          bottom.points.push_back(p);
+    for (double a = 0.0; a <= 2 * half + 1e-9; a += step)
+      for (double b = 0.0; b < 2 * half - 1e-9; b += step)
+      {
+        bottom.points.push_back(at(x0 + a, y0 + b));  // along y
+        bottom.points.push_back(at(x0 + a, y0 + b + step));
+        bottom.points.push_back(at(x0 + b, y0 + a));  // along x
+        bottom.points.push_back(at(x0 + b + step, y0 + a));
+      }
     array.markers.push_back(bottom);
   }
   return array;
