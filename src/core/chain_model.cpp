@@ -49,8 +49,8 @@ void ChainModel::elementDynamics(int e, double t, const ElementKinematics& k, Bo
   if (!bottom)
     return;
   // Contact forces at points of the element, moved to its CG. A cable segment carries its aft joint
-  // (so each joint x_2 .. x_{nu+1} once, with the stiffness of one segment's length); the end body its
-  // own contact points.
+  // (so each joint x_2 .. x_{nu+1} once) with the stiffness of the cable that joint stands for: half of
+  // each neighbouring segment (the bail: half the last one); the end body its own contact points.
   const Eigen::Vector3d x_G = k.pointAt(out.cg_fraction);
   auto add = [&](double eta, double stiffness, double damping) {
     const Eigen::Vector3d p = k.pointAt(eta);
@@ -61,7 +61,8 @@ void ChainModel::elementDynamics(int e, double t, const ElementKinematics& k, Bo
   const SeabedParams& sp = bottom->params();
   if (e < segments_)
   {
-    add(1.0, sp.stiffness * elementLength(e), sp.damping * elementLength(e));
+    const double carried = 0.5 * (elementLength(e) + (e + 1 < segments_ ? elementLength(e + 1) : 0.0));
+    add(1.0, sp.stiffness * carried, sp.damping * carried);
     return;
   }
   for (double eta : end_body_->contactFractions())

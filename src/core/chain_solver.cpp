@@ -45,6 +45,10 @@ void ChainSolver::solve(double t, const ShipEndState& ship, const Eigen::Ref<con
     const Eigen::Vector3d v_f = e == 0 ? ship.v_W : Eigen::Vector3d(v.col(e - 1));
     const ElementKinematics k = ElementKinematics::fromJoints(x_f, x.col(e), v_f, v.col(e));
     model_.elementDynamics(e, t, k, body);
+    // While the winch changes the first segment's length L, its axis s = (x_a - x_f)/L turns with
+    // dw/dt = s x (a_a - a_f)/L - 2 (L'/L) w: the known part goes to the right-hand side.
+    if (e == 0 && model_.firstRate() != 0.0)
+      body.wrench -= body.mass.rightCols<3>() * (-2.0 * model_.firstRate() / k.length * k.omega);
 
     // Map the Newton-Euler equations onto the joint accelerations: [a_G; dw/dt] = J_f a_f + J_a a_a.
     const double gamma = body.cg_fraction;

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -54,6 +55,8 @@ double EndElementParams::transverseInertia() const
 Eigen::Vector3d Environment::profileAt(double depth) const
 {
   const std::vector<CurrentSample>& c = current_profile;
+  if (std::isnan(depth))  // a diverging stage: let the step's finiteness check catch it
+    return Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
   if (depth <= c.front().depth)
     return c.front().velocity_W;
   if (depth >= c.back().depth)
@@ -133,9 +136,13 @@ void validate(const WinchParams& w, const CableParams& c, const std::string& p)
     requireInRange(p + ".segment_min_fraction", w.segment_min_fraction, 0.1, 0.999999, "[-] (below 1)");
   requireInRange(p + ".segment_max_fraction", w.segment_max_fraction, w.segment_min_fraction + 1.0, 10.0,
                  "[-] (at least segment_min_fraction + 1, so a split leaves both parts in the band)");
+  // The bound that depends on the cable only matters when the winch runs.
   const double d = c.segmentLength();
-  requireInRange(p + ".min_length", w.min_length, w.segment_min_fraction * d, 1e5,
-                 "[m] (at least segment_min_fraction * cable.length / cable.segments)");
+  if (w.enabled)
+    requireInRange(p + ".min_length", w.min_length, w.segment_min_fraction * d, 1e5,
+                   "[m] (at least segment_min_fraction * cable.length / cable.segments)");
+  else
+    requireInRange(p + ".min_length", w.min_length, 0.0, 1e5, "[m]", true);
   requireInRange(p + ".max_length", w.max_length, w.min_length, 1e5, "[m] (at least min_length)");
   requireInRange(p + ".max_rate", w.max_rate, 0.0, 20.0, "[m/s]", true);
   requireInRange(p + ".max_acceleration", w.max_acceleration, 0.0, 100.0, "[m/s^2]", true);

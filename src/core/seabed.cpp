@@ -95,6 +95,12 @@ namespace
 // Bilinear interpolation and its gradient on the grid, clamped at the edges.
 double gridDepth(const BathymetryGrid& g, double x, double y, Eigen::Vector2d* gradient)
 {
+  if (!std::isfinite(x) || !std::isfinite(y))  // a diverging stage: NaN, never an index out of the grid
+  {
+    if (gradient)
+      gradient->setConstant(std::numeric_limits<double>::quiet_NaN());
+    return std::numeric_limits<double>::quiet_NaN();
+  }
   const int nx = static_cast<int>(g.depth.cols()), ny = static_cast<int>(g.depth.rows());
   const double u = std::clamp((x - g.origin.x()) / g.spacing.x(), 0.0, nx - 1.0);
   const double w = std::clamp((y - g.origin.y()) / g.spacing.y(), 0.0, ny - 1.0);

@@ -136,35 +136,45 @@ bool Simulator::remesh(double t)
   if (!winch_.enabled)
     return false;
   const double d = model_->nominalSegmentLength();
-  bool changed = false;
-  for (;;)
+  // One pass in one direction: split while the first segment is above the band, or merge while it is
+  // below. The first segment's length is carried from step to step (not recomputed from the cable out,
+  // whose rounding could put it on both sides of the band at once), and a call never turns back.
+  // A relative margin of 1e-6 on both edges: with max >= min + 1 a split then lands strictly above the
+  // merge edge and a merge strictly below the split edge, whatever the rounding.
+  const double split_above = winch_.segment_max_fraction * d * (1.0 + 1e-6);
+  const double merge_below = winch_.segment_min_fraction * d * (1.0 - 1e-6);
+  double first = model_->firstLength();
+  const bool split = first > split_above;
+  const bool merge = !split && first < merge_below && model_->segments() >= 2;
+  if (!split && !merge)
+    return false;
+  const ShipEndState ship = ship_(t);
+  for (int pass = 0; pass < 100000; ++pass)
   {
     const int n = model_->jointCount();
     const int nu = model_->segments();
     const double length = y_[6 * n], rate = y_[6 * n + 1];
-    const double first = length - (nu - 1) * d;
     Eigen::Map<Eigen::Matrix3Xd> x(y_.data(), 3, n), v(y_.data() + 3 * n, 3, n);
-    const ShipEndState ship = ship_(t);
     StateVector next;
-    if (first > winch_.segment_max_fraction * d)
+    if (split && first > split_above)
     {
-      // Split: a new joint on the first segment, d from its aft end. It moves as a point of the rigid
-      // segment across the flow and with the aft joint along it (that part keeps its length d).
+      // A new joint on the first segment, d from its aft end. It moves as a point of the rigid segment
+      // across the flow and with the aft joint along it (that part keeps its length d).
       const Eigen::Vector3d axis = x.col(0) - ship.p_W;
       const Eigen::Vector3d s = axis.normalized();
       const double eta = (first - d) / first;
-      const Eigen::Vector3d p = ship.p_W + eta * axis;
       Eigen::Vector3d w = ship.v_W + eta * (v.col(0) - ship.v_W);
       w += s.dot(v.col(0) - w) * s;
       next.resize(6 * (n + 1) + 2);
       Eigen::Map<Eigen::Matrix3Xd> nx(next.data(), 3, n + 1), nv(next.data() + 3 * (n + 1), 3, n + 1);
-      nx.col(0) = p;
+      nx.col(0) = ship.p_W + eta * axis;
       nv.col(0) = w;
       nx.rightCols(n) = x;
       nv.rightCols(n) = v;
-      model_->setLayout(nu + 1, first - d);
+      first -= d;
+      model_->setLayout(nu + 1, first);
     }
-    else if (first < winch_.segment_min_fraction * d && nu >= 2)
+    else if (merge && first < merge_below && nu >= 2)
     {
       // Merge the first segment into the second: drop joint x_2. The new first segment runs straight
       // from the tow point to x_3; its length is the sum, so mass is kept; the projection then
@@ -173,19 +183,20 @@ bool Simulator::remesh(double t)
       Eigen::Map<Eigen::Matrix3Xd> nx(next.data(), 3, n - 1), nv(next.data() + 3 * (n - 1), 3, n - 1);
       nx = x.rightCols(n - 1);
       nv = v.rightCols(n - 1);
-      model_->setLayout(nu - 1, first + d);
+      first += d;
+      model_->setLayout(nu - 1, first);
     }
     else
     {
-      return changed;
+      break;
     }
     const int m = model_->jointCount();
     next[6 * m] = length;
     next[6 * m + 1] = rate;
     y_.swap(next);
     dydt_.assign(y_.size(), 0.0);
-    changed = true;
   }
+  return true;
 }
 
 void Simulator::reset(double t, const ChainState& state)
@@ -203,6 +214,7 @@ void Simulator::reset(double t, const ChainState& state)
   t_ = t;
   y_.resize(6 * n + 2);
   dydt_.resize(6 * n + 2);
+  y_[6 * n + 1] = 0.0;  // the winch restarts from rest (the cable out and the layout are kept)
   std::copy(state.x.data(), state.x.data() + 3 * n, y_.begin());
   std::copy(state.v.data(), state.v.data() + 3 * n, y_.begin() + 3 * n);
   project(t_);
@@ -306,6 +318,9 @@ StepReport Simulator::advanceTo(double t_end)
   auto controlled = odeint::make_controlled(num.abs_tol, num.rel_tol, odeint::runge_kutta_dopri5<StateVector>());
   odeint::runge_kutta4<StateVector> rk4;
 
+  // The commands, the current or the thrust may have changed since the last step: the derivative the
+  // first step starts from (k1, first-same-as-last) is taken afresh.
+  refreshOutputs();
   StepReport report;
   StateVector y_prev;
   while (t_end - t_ > 1e-12 * std::max(1.0, std::abs(t_end)))
@@ -329,8 +344,11 @@ StepReport Simulator::advanceTo(double t_end)
         ++report.rejected;
         dt_ = h;
         if (dt_ < kMinStep)
+        {
+          refreshOutputs();  // the rejected stages left the winch's first segment at a trial value
           throw std::runtime_error("integration failed: the adaptive step fell below 1e-10 s at t = " +
                                    std::to_string(t_) + " s");
+        }
         continue;
       }
       if (!clamped || h > dt_)

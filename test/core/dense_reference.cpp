@@ -36,6 +36,11 @@ DenseSolution solveDense(const ChainModel& model, double t, const ShipEndState& 
     const ElementKinematics k = ElementKinematics::fromJoints(x_f, x.col(e), v_f, v.col(e));
     BodyDynamics body;
     model.elementDynamics(e, t, k, body);
+    // A winch changes the first segment's length L(t): differentiating s = (x_a - x_f)/L twice,
+    // s x d2s/dt2 = s x (a_a - a_f)/L - 2 (L'/L) s x ds/dt, and w = s x ds/dt: the angular acceleration
+    // has the known part -2 (L'/L) w, moved here to the loads.
+    if (e == 0)
+      body.wrench -= body.mass.rightCols<3>() * (-2.0 * model.firstRate() / k.length * k.omega);
     const double g = body.cg_fraction;
     const double l = k.length;
     const Eigen::Vector3d& s = k.s;

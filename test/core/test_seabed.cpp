@@ -167,5 +167,36 @@ TEST(Seabed, VehicleTowedIntoARisingSlopeIsLiftedNotPushedThrough)
   EXPECT_LT(lowest_hull, 0.5);                   // it did touch
 }
 
+// A diverging stage hands the seabed and the current profile NaN positions: they answer NaN (which the
+// step's finiteness check catches), never an index outside their tables.
+TEST(Seabed, NonFinitePositionsGiveNaNNotACrash)
+{
+  const Seabed bottom(ridge(0.0, 100.0, { 100.0, 80.0 }));
+  EXPECT_TRUE(std::isnan(bottom.bottomZ(NAN, 0.0)));
+  EXPECT_TRUE(std::isnan(bottom.bottomZ(0.0, INFINITY)));
+  EXPECT_FALSE(bottom.contactForce(Eigen::Vector3d(NAN, 0, -200), Eigen::Vector3d::Zero(), 1e4, 100).allFinite());
+  Environment env;
+  env.current_profile = { CurrentSample{ 0.0, Eigen::Vector3d::Zero() }, CurrentSample{ 50.0, Eigen::Vector3d::Ones() } };
+  EXPECT_FALSE(env.currentAt(NAN).allFinite());
+
+  // A ship motion that turns NaN: the simulator throws and keeps its last good state, seabed or not.
+  CableParams cable;
+  cable.length = 100.0;
+  cable.segments = 10;
+  auto model = test::makeModel(cable, test::endLikeSegment(cable), env);
+  model->setSeabed(std::make_shared<Seabed>(ridge(-1000.0, 1000.0, { 50.0, 60.0, 70.0 })));
+  Simulator sim(model, [](double t) {
+    ShipEndState s;
+    s.v_W = Eigen::Vector3d(1.0, 0.0, 0.0);
+    s.p_W = t * s.v_W;
+    if (t > 1.0)
+      s.a_W = Eigen::Vector3d::Constant(NAN);
+    return s;
+  });
+  sim.reset(0.0, straightChain(*model, Eigen::Vector3d::Zero(), Eigen::Vector3d(-1, 0, -0.5), Eigen::Vector3d(1, 0, 0)));
+  EXPECT_THROW(sim.advanceTo(5.0), std::runtime_error);
+  EXPECT_TRUE(sim.jointPositions().allFinite());
+}
+
 }  // namespace
 }  // namespace tow_sim

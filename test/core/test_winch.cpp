@@ -234,5 +234,53 @@ TEST(Winch, PayingOutAndHaulingBackUnderwayReturnsToTheSteadyTow)
   EXPECT_LT((end - start).colwise().norm().maxCoeff(), 0.01);
 }
 
+// Review findings, kept as regressions.
+TEST(Winch, ADisabledWinchDoesNotConstrainTheCable)
+{
+  CableParams cable;
+  cable.length = 1000.0;
+  cable.segments = 4;  // 250 m segments: beyond the enabled winch's default min_length band
+  EXPECT_NO_THROW(validate(WinchParams(), cable));
+  auto model = std::make_shared<ChainModel>(cable, std::make_shared<Vehicle>(VehicleParams()), Environment(),
+                                            NumericsParams());
+  EXPECT_NO_THROW(Simulator(model, constantVelocityShip(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero())));
+}
+
+// A first segment parked within rounding of both band edges (max = min + 1) must not split and merge
+// for ever.
+TEST(Winch, ReMeshingTerminatesOnTheBandEdge)
+{
+  CableParams cable;
+  cable.length = 10.0;
+  cable.segments = 25;  // d = 0.4 m
+  WinchParams w;
+  w.enabled = true;
+  w.min_length = 5.0;
+  w.max_length = 40.0;
+  auto vehicle = std::make_shared<Vehicle>(VehicleParams());
+  vehicle->resetActuators(0.0);
+  auto model = std::make_shared<ChainModel>(cable, vehicle, Environment(), NumericsParams());
+  const double d = model->nominalSegmentLength();
+  model->setLayout(87, 35.0 - 86 * d);  // 35 m out, the first segment a few ulps past 1.5 d
+  Simulator sim(model, constantVelocityShip(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()), w);
+  sim.reset(0.0, straightChain(*model, Eigen::Vector3d::Zero(), -Eigen::Vector3d::UnitZ(), Eigen::Vector3d::Zero()));
+  sim.advanceTo(0.5);
+  EXPECT_GE(model->segments(), 87);
+  EXPECT_LE(model->segments(), 88);
+  expectBookkeeping(sim);
+}
+
+TEST(Winch, ResetStartsTheWinchFromRest)
+{
+  Tow tow = makeTow(300.0, 60, Eigen::Vector3d(2.0, 0.0, 0.0), testWinch());
+  tow.sim->setWinchCommand(1.0);
+  tow.sim->advanceTo(10.0);
+  ASSERT_GT(tow.sim->payoutRate(), 0.5);
+  const double out = tow.sim->cableLength();
+  tow.sim->reset(10.0, tow.sim->state());
+  EXPECT_EQ(tow.sim->payoutRate(), 0.0);
+  EXPECT_EQ(tow.sim->cableLength(), out);
+}
+
 }  // namespace
 }  // namespace tow_sim

@@ -76,8 +76,8 @@ public:
   // Newton-Euler description at time t [s] (fin servos and thrust depend on time).
   virtual void dynamics(double t, const ElementKinematics& k, const Environment& env, BodyDynamics& out) const = 0;
   // Points that touch the seabed, as fractions of the way from the bail (0) to the tail point (1);
-  // negative ahead of the bail. Default: the bail and the tail point.
-  virtual std::vector<double> contactFractions() const { return { 0.0, 1.0 }; }
+  // negative ahead of the bail. Default: the tail point (the bail is the cable's last joint).
+  virtual std::vector<double> contactFractions() const { return { 1.0 }; }
 };
 
 // Axisymmetric rigid end body: weight at the CG, buoyancy at the CB, cable-like velocity forces and
