@@ -30,6 +30,13 @@ OdometryResult checkOdometry(const OdometryInput& in, const OdometryLimits& limi
     os << "header.stamp is " << in.t - now << " s in the future";
     return refuse(os.str());
   }
+  if (in.t < now - limits.max_age)
+  {
+    std::ostringstream os;
+    os << "header.stamp is " << now - in.t << " s in the past (more than max_odom_age = " << limits.max_age
+       << " s): is the publisher on another clock (use_sim_time, rosbag play --clock)?";
+    return refuse(os.str());
+  }
   if (!track.empty() && !(in.t > track.newestTime()))
     return refuse("header.stamp is not after the previous message's (duplicated or reordered)");
   r.q_WS = Eigen::Quaterniond(in.q_wxyz[0], in.q_wxyz[1], in.q_wxyz[2], in.q_wxyz[3]).normalized();

@@ -69,6 +69,7 @@ NodeParams readNodeParams(const ros::NodeHandle& pnh)
   p.odom_delay = readDouble(pnh, "odom_delay", p.odom_delay, 0.0, 10.0, "[s]");
   p.max_extrapolation = readDouble(pnh, "max_extrapolation", p.max_extrapolation, 0.0, 60.0, "[s]");
   p.max_ship_speed = readDouble(pnh, "max_ship_speed", p.max_ship_speed, 0.0, 1000.0, "[m/s]", true);
+  p.max_odom_age = readDouble(pnh, "max_odom_age", p.max_odom_age, 0.0, 1e6, "[s]", true);
   p.initial_shape = readString(pnh, "initial_shape", p.initial_shape);
   if (p.initial_shape != "equilibrium" && p.initial_shape != "line" && p.initial_shape != "hanging")
     throw std::invalid_argument(pnh.resolveName("initial_shape") + " = '" + p.initial_shape +
@@ -106,6 +107,7 @@ TowSimNode::TowSimNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   odometry_limits_.world_frame = params_.world_frame;
   odometry_limits_.tow_point_S = params_.tow_point_S;
   odometry_limits_.max_ship_speed = params_.max_ship_speed;
+  odometry_limits_.max_age = params_.max_odom_age;
   vehicle_ = std::make_shared<Vehicle>(config_.vehicle, config_.numerics);
   model_ = std::make_shared<ChainModel>(config_.cable, vehicle_, config_.environment, config_.numerics);
   if (config_.seabed.type != SeabedParams::Type::kNone)
@@ -225,8 +227,12 @@ void TowSimNode::onFinCommand(const tow_sim::FinCommand::ConstPtr& msg)
     ROS_WARN_THROTTLE(2.0, "tow_sim: rejected fins/command: rudder, elevator and thrust must be finite");
     return;
   }
-  const double t = started_ ? sim_->time() : 0.0;
-  if (vehicle_->command(t, msg->rudder, msg->elevator, msg->thrust))
+  if (!started_)  // the first odometry lays the cable out with the fins centred
+  {
+    ROS_WARN_THROTTLE(2.0, "tow_sim: fins/command ignored: no ship odometry yet");
+    return;
+  }
+  if (vehicle_->command(sim_->time(), msg->rudder, msg->elevator, msg->thrust))
     ROS_WARN_THROTTLE(2.0, "tow_sim: fins/command saturated: |rudder| <= %.3f rad, |elevator| <= %.3f rad, |thrust| "
                            "<= %.0f N",
                       config_.vehicle.rudder.max_deflection, config_.vehicle.elevator.max_deflection,

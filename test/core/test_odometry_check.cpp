@@ -61,6 +61,11 @@ TEST(OdometryCheck, RefusesEachKindOfBadMessage)
   refused(good(1.0), "not after the previous");  // duplicate
   refused(good(0.5), "not after the previous");  // reordered
   refused(good(5.0), "in the future");
+  ShipTrack empty;  // even the first message: a stamp from another clock would start the cable there
+  const OdometryResult ancient = checkOdometry(good(1.0), limits, empty, 1.0 + limits.max_age + 0.5);
+  EXPECT_FALSE(ancient.accepted);
+  EXPECT_NE(ancient.reason.find("s in the past (more than max_odom_age"), std::string::npos) << ancient.reason;
+  EXPECT_TRUE(checkOdometry(good(1.0), limits, empty, 1.0 + limits.max_age - 0.5).accepted);
   in = good(1.5);
   in.v_S.x() = 40.0;
   refused(in, "exceeds max_ship_speed");

@@ -26,6 +26,7 @@ struct OdometryLimits
   Eigen::Vector3d tow_point_S = Eigen::Vector3d(-20.0, 0.0, 0.0);  // [m]
   double max_ship_speed = 25.0;     // [m/s] of the tow point, and for jumps
   double max_future = 1.0;          // [s] stamps later than now + this are refused
+  double max_age = 10.0;            // [s] stamps earlier than now - this are refused (a publisher on another clock)
   double max_jump_slack = 10.0;     // [m] a sample may land this far from the extrapolated track, plus speed x dt
 };
 
@@ -38,7 +39,7 @@ struct OdometryResult
 };
 
 // Checks frame, finiteness, unit quaternion (norm within 0.01 of 1; normalised), order of stamps
-// against the track (no duplicates or reordering), stamps from the future, speed and jumps; gives the
+// against the track (no duplicates or reordering), stamps from the future or the far past, speed and jumps; gives the
 // tow point's position and velocity for an accepted sample. Never throws.
 OdometryResult checkOdometry(const OdometryInput& in, const OdometryLimits& limits, const ShipTrack& track, double now);
 

@@ -38,6 +38,7 @@ struct NodeParams
   double odom_delay = 0.2;                // [s] the simulation runs this far behind the clock, [0, 10]
   double max_extrapolation = 1.0;         // [s] past the newest odometry, then hold, [0, 60]
   double max_ship_speed = 25.0;           // [m/s] odometry implying a faster jump is rejected, (0, 1000]
+  double max_odom_age = 10.0;             // [s] odometry stamped earlier than now - this is rejected, (0, 1e6]
   std::string initial_shape = "equilibrium";  // equilibrium: steady tow at the ship's velocity (falls back to
                                               // line if none is found); line: straight astern at
                                               // initial_angle; hanging: straight down
