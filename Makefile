@@ -21,6 +21,9 @@ export UBSAN_OPTIONS := halt_on_error=1:print_stacktrace=1
 # rviz opens when there is a display; without one the demo runs headless and prints a status line each second.
 RVIZ ?= $(if $(DISPLAY),true,false)
 MANOEUVRE ?= turn
+# Wall-time length of the odometry soak rostest in make test (.ci/run sets 600, the issue's 10 minutes).
+SOAK_SECONDS ?= 120
+export TOW_SIM_SOAK_SECONDS := $(SOAK_SECONDS)
 
 deps:
 	@$(REPO)/scripts/install_deps.sh
