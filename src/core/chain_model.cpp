@@ -40,7 +40,17 @@ void ChainModel::elementDynamics(int e, double t, const ElementKinematics& k, Bo
                                  bool with_contact) const
 {
   if (e == 0 && segments_ > 0)
-    cableSegmentDynamics(first_, k, env_, out);
+  {
+    // While the winch runs, the cable of the first segment moves along it with its aft joint (it leaves
+    // the ship at L' along s): through the water it moves L'/2 faster along s than the segment's
+    // geometric midpoint. That changes only the tangential drag; the normal flow and the rotation are
+    // the same.
+    if (first_rate_ != 0.0)
+      cableSegmentDynamics(first_, ElementKinematics::fromJoints(k.x_f, k.x_a, k.v_f + first_rate_ * k.s, k.v_a), env_,
+                           out);
+    else
+      cableSegmentDynamics(first_, k, env_, out);
+  }
   else if (e < segments_)
     cableSegmentDynamics(segment_, k, env_, out);
   else

@@ -143,7 +143,11 @@ void validate(const WinchParams& w, const CableParams& c, const std::string& p)
                    "[m] (at least segment_min_fraction * cable.length / cable.segments)");
   else
     requireInRange(p + ".min_length", w.min_length, 0.0, 1e5, "[m]", true);
-  requireInRange(p + ".max_length", w.max_length, w.min_length, 1e5, "[m] (at least min_length)");
+  if (w.enabled)  // the winch adds segments of the nominal length: at most cable.segments' limit of them
+    requireInRange(p + ".max_length", w.max_length, w.min_length, std::min(1e5, 1e5 * d),
+                   "[m] (at least min_length, at most 100000 segments of cable.length / cable.segments)");
+  else
+    requireInRange(p + ".max_length", w.max_length, w.min_length, 1e5, "[m] (at least min_length)");
   requireInRange(p + ".max_rate", w.max_rate, 0.0, 20.0, "[m/s]", true);
   requireInRange(p + ".max_acceleration", w.max_acceleration, 0.0, 100.0, "[m/s^2]", true);
   requireInRange(p + ".response_time", w.response_time, 0.01, 100.0, "[s]");

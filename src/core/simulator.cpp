@@ -1,6 +1,7 @@
 #include "tow_sim/core/simulator.h"
 
 #include <algorithm>
+#include <limits>
 #include <Eigen/Geometry>
 #include <boost/numeric/odeint.hpp>
 #include <cmath>
@@ -214,7 +215,8 @@ void Simulator::reset(double t, const ChainState& state)
   t_ = t;
   y_.resize(6 * n + 2);
   dydt_.resize(6 * n + 2);
-  y_[6 * n + 1] = 0.0;  // the winch restarts from rest (the cable out and the layout are kept)
+  y_[6 * n + 1] = 0.0;  // the winch restarts from rest with no command (the cable out and the layout are kept),
+  winch_command_ = 0.0;  // as the vehicle's actuators do
   std::copy(state.x.data(), state.x.data() + 3 * n, y_.begin());
   std::copy(state.v.data(), state.v.data() + 3 * n, y_.begin() + 3 * n);
   project(t_);
@@ -321,6 +323,11 @@ StepReport Simulator::advanceTo(double t_end)
   // The commands, the current or the thrust may have changed since the last step: the derivative the
   // first step starts from (k1, first-same-as-last) is taken afresh.
   refreshOutputs();
+  // While the winch runs, a step shortens the first segment by at most half the band's lower edge (the
+  // rate stays within max_rate), so it never collapses before the merge that follows the step.
+  const double winch_step = winch_.enabled ? 0.5 * winch_.segment_min_fraction * model_->nominalSegmentLength() /
+                                                 winch_.max_rate
+                                           : std::numeric_limits<double>::infinity();
   StepReport report;
   StateVector y_prev;
   while (t_end - t_ > 1e-12 * std::max(1.0, std::abs(t_end)))
@@ -329,7 +336,7 @@ StepReport Simulator::advanceTo(double t_end)
     const double t_prev = t_;
     if (num.stepper == StepperType::kRk4)
     {
-      const double h = std::min(num.fixed_step, t_end - t_);
+      const double h = std::min({ num.fixed_step, winch_step, t_end - t_ });
       rk4.do_step(system, y_, dydt_, t_, h);
       t_ = h == t_end - t_ ? t_end : t_ + h;
     }
@@ -337,7 +344,7 @@ StepReport Simulator::advanceTo(double t_end)
     {
       const double remaining = t_end - t_;
       const bool clamped = dt_ >= remaining;
-      double h = std::min({ dt_, remaining, num.max_step });
+      double h = std::min({ dt_, remaining, num.max_step, winch_step });
       // dopri5 is first-same-as-last: dydt_ holds f(y_) and is advanced with the step.
       if (controlled.try_step(system, y_, dydt_, t_, h) == odeint::fail)
       {

@@ -90,6 +90,22 @@ TEST(Winch, IsOffByDefaultAndValidated)
   w = testWinch();
   w.segment_max_fraction = 1.2;  // a split would leave a piece below the band
   EXPECT_THROW(validate(w, tow.model->cable()), std::invalid_argument);
+  CableParams fine = tow.model->cable();
+  fine.length = 300.0;
+  fine.segments = 30000;  // 1 cm segments: 1 km out would be 100000 of them, 1 km + 1 cm one too many
+  w = testWinch();
+  w.max_length = 1000.0;
+  EXPECT_NO_THROW(validate(w, fine));
+  w.max_length = 1000.01 + 1e-9;
+  try
+  {
+    validate(w, fine);
+    FAIL() << "a winch that could lay out more than 100000 segments accepted";
+  }
+  catch (const std::invalid_argument& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("winch.max_length = 1000.01 is out of range"), std::string::npos) << e.what();
+  }
   w = testWinch();
   Simulator on(tow.model, constantVelocityShip(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()), w);
   EXPECT_THROW(on.setWinchCommand(NAN), std::invalid_argument);
@@ -280,6 +296,84 @@ TEST(Winch, ResetStartsTheWinchFromRest)
   tow.sim->reset(10.0, tow.sim->state());
   EXPECT_EQ(tow.sim->payoutRate(), 0.0);
   EXPECT_EQ(tow.sim->cableLength(), out);
+  // The command is cleared with the fins' (a restart after divergence must not pay out on its own).
+  tow.sim->advanceTo(20.0);
+  EXPECT_EQ(tow.sim->payoutRate(), 0.0);
+  EXPECT_EQ(tow.sim->cableLength(), out);
+}
+
+TEST(Winch, PaidOutCableDragsAtItsOwnSpeedThroughTheWater)
+{
+  // A cable hanging straight down from a ship at rest, paid out at a steady 1 m/s: all of it sinks at
+  // 1 m/s, the first segment's cable too (only its geometric midpoint moves at 0.5 m/s). Its tension
+  // drop is its weight in water less the Pode drag of cable moving along itself at 1 m/s,
+  // C1 L0 (1 m/s)^2 with C1 = rho C_dt pi D / 2, nothing accelerating.
+  CableParams cable;
+  cable.length = 100.0;
+  cable.segments = 20;
+  WinchParams w = testWinch();
+  w.min_length = 50.0;
+  w.max_acceleration = 1.0;
+  auto vehicle = std::make_shared<Vehicle>(VehicleParams());
+  vehicle->resetActuators(0.0);
+  const Environment env;
+  auto model = std::make_shared<ChainModel>(cable, vehicle, env, NumericsParams());
+  Simulator sim(model, constantVelocityShip(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()), w);
+  sim.reset(0.0, straightChain(*model, Eigen::Vector3d::Zero(), -Eigen::Vector3d::UnitZ(), Eigen::Vector3d::Zero()));
+  sim.advanceTo(60.0);  // the hanging vehicle settles
+  sim.setWinchCommand(1.0);
+  sim.advanceTo(80.0);
+  ASSERT_NEAR(sim.payoutRate(), 1.0, 1e-6);
+  const double L0 = model->firstLength();
+  const double area = M_PI * cable.diameter * cable.diameter / 4.0;
+  const double net_weight = (cable.mass_per_length - env.water_density * area) * env.gravity * L0;
+  const double c1 = 0.5 * env.water_density * cable.tangential_drag_coefficient * M_PI * cable.diameter;
+  const double drop = sim.tensions().col(0).z() - sim.tensions().col(1).z();
+  std::printf("first segment %.3f m paid out at 1 m/s: tension drop %.4f N = weight %.4f N - drag %.4f N (at the "
+              "midpoint's 0.5 m/s: %.4f N)\n",
+              L0, drop, net_weight, net_weight - drop, c1 * L0 * 0.25);
+  EXPECT_NEAR(net_weight - drop, c1 * L0, 0.02 * c1 * L0);
+}
+
+TEST(Winch, FastHaulInWithFixedStepsNeverCollapsesTheFirstSegment)
+{
+  // 20 m/s against a band whose lower edge is 0.1 m: an RK4 step of 0.02 s would take 0.4 m off the
+  // first segment, past zero (the step then leaves joints 1e8 lengths off before the projection); the
+  // simulator shortens its steps while the winch runs instead.
+  CableParams cable;
+  cable.length = 100.0;
+  cable.segments = 100;  // d = 1 m
+  NumericsParams num;
+  num.stepper = StepperType::kRk4;
+  num.fixed_step = 0.02;
+  WinchParams w;
+  w.enabled = true;
+  w.min_length = 50.0;
+  w.max_length = 200.0;
+  w.max_rate = 20.0;
+  w.max_acceleration = 100.0;
+  w.response_time = 0.01;
+  w.segment_min_fraction = 0.1;
+  w.segment_max_fraction = 1.1;
+  auto vehicle = std::make_shared<Vehicle>(VehicleParams(), num);
+  vehicle->resetActuators(0.0);
+  auto model = std::make_shared<ChainModel>(cable, vehicle, Environment(), num);
+  Simulator sim(model, constantVelocityShip(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()), w);
+  sim.reset(0.0, straightChain(*model, Eigen::Vector3d::Zero(), -Eigen::Vector3d::UnitZ(), Eigen::Vector3d::Zero()));
+  sim.setWinchCommand(-20.0);
+  double before_projection = 0.0;
+  for (double t = 0.1; t <= 5.0 + 1e-9; t += 0.1)
+  {
+    StepReport report;
+    ASSERT_NO_THROW(report = sim.advanceTo(t)) << "at t = " << t << " s";
+    before_projection = std::max(before_projection, report.max_length_error);
+  }
+  std::printf("hauled in 50 m at 20 m/s with rk4: largest length error before projection %.1e\n", before_projection);
+  EXPECT_LT(before_projection, 1e-9);
+  EXPECT_NEAR(sim.cableLength(), 50.0, 1e-3);
+  EXPECT_EQ(model->segments(), 50);
+  EXPECT_LT(sim.lengthError(), 1e-9);
+  expectBookkeeping(sim);
 }
 
 }  // namespace
