@@ -3,6 +3,7 @@
 #include "yaml_section.h"
 
 #include <cmath>
+#include <filesystem>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -107,11 +108,15 @@ void readSeabed(Section s, SeabedParams& b, const std::string& base_dir)
   {
     if (b.grid_file.empty())
       fail(s.path("grid_file"), "must name a bathymetry file for type 'grid'");
+    // Resolved to an absolute path, so a configuration written back (the batch runner's scenario.yaml,
+    // in another folder) reads the same grid from anywhere.
     const std::string path = b.grid_file[0] == '/' ? b.grid_file : base_dir + b.grid_file;
-    b.grid_file = path;  // as resolved: a configuration written back reads the same grid from anywhere
+    std::error_code no_cwd;
+    const std::filesystem::path absolute = std::filesystem::absolute(path, no_cwd);
+    b.grid_file = no_cwd ? path : absolute.lexically_normal().string();
     try
     {
-      b.grid = loadBathymetryFile(path);
+      b.grid = loadBathymetryFile(b.grid_file);
     }
     catch (const std::invalid_argument& e)
     {

@@ -2,6 +2,8 @@
 // reported with its full path.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "tow_sim/core/config.h"
@@ -140,6 +142,23 @@ vehicle:
   EXPECT_TRUE(c.vehicle.prolate_spheroid.has_value());
   EXPECT_NEAR(c.vehicle.rudder.lift(0.25), 0.25, 1e-12);
   expectSame(loadConfig(toYaml(c)), c);
+}
+
+TEST(Config, AGridFileGivenRelativeToTheConfigurationIsWrittenBackAbsolute)
+{
+  // The batch runner writes scenario.yaml into its output folder: a grid path relative to the scenario's
+  // folder (or to the working directory) must still find the grid from there.
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / "tow_sim_grid_config_test";
+  fs::create_directories(dir);
+  std::ofstream(dir / "grid.yaml") << "{origin: [0, 0], spacing: [10, 10], depth: [[50, 60], [70, 80]]}";
+  const std::string relative_dir = fs::relative(dir, fs::current_path()).string() + "/";
+  const SimulationConfig c = loadConfig(YAML::Load("seabed: {type: grid, grid_file: grid.yaml}"), "", relative_dir);
+  EXPECT_TRUE(fs::path(c.seabed.grid_file).is_absolute()) << c.seabed.grid_file;
+  EXPECT_TRUE(fs::equivalent(c.seabed.grid_file, dir / "grid.yaml"));
+  const SimulationConfig again = loadConfig(toYaml(c), "", "/nonexistent/");
+  EXPECT_EQ(again.seabed.grid.depth, c.seabed.grid.depth);
+  EXPECT_EQ(again.seabed.grid.depth(1, 1), 80.0);
 }
 
 TEST(Config, AcceptsTheUpperTriangleOfTheAddedMassMatrix)
