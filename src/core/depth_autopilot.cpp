@@ -158,7 +158,8 @@ AutopilotCommand DepthAutopilot::update(double now)
   AutopilotCommand out;
   if (!has_vehicle_)
     return out;
-  if (now - vehicle_.t > p_.odom_timeout)
+  const double arrived = std::isfinite(vehicle_.received) ? vehicle_.received : vehicle_.t;
+  if (now - arrived > p_.odom_timeout)
   {
     out.status = AutopilotCommand::Status::kStale;
     return out;
@@ -167,8 +168,8 @@ AutopilotCommand DepthAutopilot::update(double now)
   out.thrust = p_.thrust;
   // Integrate over the time since the last integrated measurement, never across a stale gap.
   double dt = 0.0;
-  if (integrated_)
-    dt = std::min(vehicle_.t - integrated_until_, p_.odom_timeout);
+  if (integrated_ && vehicle_.t - integrated_until_ <= p_.odom_timeout)
+    dt = vehicle_.t - integrated_until_;
   integrated_until_ = vehicle_.t;
   integrated_ = true;
   const double depth = -vehicle_.p_W.z();

@@ -165,6 +165,8 @@ Scenario loadScenarioUnguarded(const YAML::Node& root, const std::string& base_d
     a.read("thrust", p.thrust);
     a.read("odom_timeout", p.odom_timeout);
     a.read("max_depth", p.max_depth);
+    requireInRange(a.path("rate"), ap.rate, 0.1, 1000.0, "[Hz]");
+    p.validate(a.name() + ".");  // before the setpoints, which are checked against max_depth
     for (Section item : a.items("setpoints"))
     {
       AutopilotSetpoint sp;
@@ -182,8 +184,6 @@ Scenario loadScenarioUnguarded(const YAML::Node& root, const std::string& base_d
       ap.setpoints.push_back(sp);
     }
     a.finish();
-    requireInRange(a.path("rate"), ap.rate, 0.1, 1000.0, "[Hz]");
-    p.validate(a.name() + ".");
     std::stable_sort(ap.setpoints.begin(), ap.setpoints.end(),
                      [](const AutopilotSetpoint& x, const AutopilotSetpoint& y) { return x.t < y.t; });
     for (std::size_t i = 0; i < sc.commands.size(); ++i)

@@ -110,6 +110,7 @@ void DepthAutopilotNode::onVehicleOdometry(const nav_msgs::Odometry::ConstPtr& m
     }
     VehicleMeasurement m;
     m.t = stampOf(msg->header);
+    m.received = ros::Time::now().toSec();  // stale by arrival: tow_sim_node stamps trail the clock by odom_delay
     m.p_W = Eigen::Vector3d(p.x, p.y, p.z);
     m.v_W = q.normalized() * Eigen::Vector3d(v.x, v.y, v.z);  // the twist is in the vehicle frame
     // Altitude from the newest cable/state of the same moment (within 0.5 s), moved by the depth change
@@ -205,7 +206,7 @@ void DepthAutopilotNode::tick(const ros::TimerEvent&)
     if (c.status == AutopilotCommand::Status::kWaiting)
       ROS_INFO_THROTTLE(10.0, "depth_autopilot: waiting for %s; fins centred", vehicle_sub_.getTopic().c_str());
     else if (c.status == AutopilotCommand::Status::kStale)
-      ROS_WARN_THROTTLE(2.0, "depth_autopilot: %s is older than ~odom_timeout = %.2f s: fins centred, no thrust",
+      ROS_WARN_THROTTLE(2.0, "depth_autopilot: nothing new on %s for ~odom_timeout = %.2f s: fins centred, no thrust",
                         vehicle_sub_.getTopic().c_str(), params_.odom_timeout);
     tow_sim::FinCommand cmd;
     cmd.header.stamp = ros::Time::now();

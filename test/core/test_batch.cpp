@@ -189,6 +189,7 @@ TEST(Batch, BadScenariosAreRefusedNamingTheKey)
   refuse("seabed: {type: flat, depth: -3}", "seabed.depth = -3");
   refuse("environment: {current_profile: [{depth: 50}, {depth: 20}]}", "current_profile[1].depth = 20");
   refuse("autopilot: {kp: -1}", "autopilot.kp = -1");
+  refuse("autopilot: {max_depth: -5, setpoints: [{t: 0, depth: 10}]}", "autopilot.max_depth = -5");
   refuse("autopilot: {setpoints: [{t: 0, altitude: 10}]}", "autopilot.setpoints[0].altitude: needs a seabed");
   refuse("autopilot: {}\ncommands: [{t: 5, elevator: 0.1}]", "commands[0]: rudder, elevator and thrust belong");
   int status = 0;

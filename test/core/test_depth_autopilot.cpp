@@ -225,9 +225,31 @@ TEST(DepthAutopilot, StaleOdometryCentresTheFins)
   EXPECT_EQ(stale.rudder, 0.0);
   EXPECT_EQ(stale.thrust, 0.0);
   EXPECT_FALSE(ap.addVehicle(at(5.0, 30.0)));  // not after the previous stamp
-  EXPECT_TRUE(ap.addVehicle(at(7.0, 30.0)));
-  EXPECT_EQ(ap.update(7.0).status, AutopilotCommand::Status::kActive);
-  EXPECT_EQ(ap.update(7.0).thrust, 50.0);
+  EXPECT_TRUE(ap.addVehicle(at(7.0, 10.5)));  // 0.5 m deep of the setpoint: the output is not saturated
+  const AutopilotCommand back = ap.update(7.0);
+  EXPECT_EQ(back.status, AutopilotCommand::Status::kActive);
+  EXPECT_EQ(back.thrust, 50.0);
+  EXPECT_FALSE(back.elevator_saturated);
+  EXPECT_EQ(back.integral, 0.0);  // nothing integrated across the 2 s gap
+  ap.addVehicle(at(7.5, 10.5));
+  EXPECT_NEAR(ap.update(7.5).integral, -p.ki * (10.0 - 10.5) * 0.5, 1e-15);  // and on again after it
+}
+
+TEST(DepthAutopilot, StalenessCountsFromArrivalWhenTheArrivalIsKnown)
+{
+  // tow_sim_node stamps vehicle/odom with its simulation time, odom_delay (and any lag) behind the
+  // clock: odometry that keeps arriving is fresh however far its stamps trail.
+  DepthAutopilot ap(noTrack());
+  ap.setSetpoint(10.0);
+  VehicleMeasurement m = at(5.0, 30.0);
+  m.received = 8.0;  // 3 s behind, more than odom_timeout
+  ap.addVehicle(m);
+  EXPECT_EQ(ap.update(8.5).status, AutopilotCommand::Status::kActive);
+  EXPECT_EQ(ap.update(9.01).status, AutopilotCommand::Status::kStale);  // nothing new for over 1 s
+  m = at(5.0, 30.0);
+  m.received = 9.5;  // the same stamp again (the simulation holding): not news
+  EXPECT_FALSE(ap.addVehicle(m));
+  EXPECT_EQ(ap.update(9.5).status, AutopilotCommand::Status::kStale);
 }
 
 TEST(DepthAutopilot, RejectsBadSetpointsMeasurementsAndParameters)

@@ -75,6 +75,8 @@ struct VehicleMeasurement
   Eigen::Vector3d p_W = Eigen::Vector3d::Zero();  // [m] CG position, world ENU (z up, depth = -z)
   Eigen::Vector3d v_W = Eigen::Vector3d::Zero();  // [m/s] CG velocity, world ENU
   double altitude = std::numeric_limits<double>::quiet_NaN();  // [m] CG above the seabed; NaN: unknown
+  // [s] when it arrived, on update()'s clock; NaN: at its stamp. Staleness counts from here.
+  double received = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct AutopilotCommand
@@ -82,7 +84,7 @@ struct AutopilotCommand
   enum class Status
   {
     kWaiting,  // no vehicle odometry yet: fins centred
-    kStale,    // the newest vehicle odometry is older than odom_timeout: fins centred
+    kStale,    // the newest vehicle odometry arrived more than odom_timeout ago: fins centred
     kActive
   };
   Status status = Status::kWaiting;
