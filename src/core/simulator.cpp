@@ -215,8 +215,10 @@ void Simulator::reset(double t, const ChainState& state)
   t_ = t;
   y_.resize(6 * n + 2);
   dydt_.resize(6 * n + 2);
-  y_[6 * n + 1] = 0.0;  // the winch restarts from rest with no command (the cable out and the layout are kept),
-  winch_command_ = 0.0;  // as the vehicle's actuators do
+  // The winch restarts from rest with its command cleared, as the vehicle's actuators do; the cable out and
+  // the layout are kept.
+  y_[6 * n + 1] = 0.0;
+  winch_command_ = 0.0;
   std::copy(state.x.data(), state.x.data() + 3 * n, y_.begin());
   std::copy(state.v.data(), state.v.data() + 3 * n, y_.begin() + 3 * n);
   project(t_);

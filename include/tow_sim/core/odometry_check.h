@@ -39,8 +39,8 @@ struct OdometryResult
 };
 
 // Checks frame, finiteness, unit quaternion (norm within 0.01 of 1; normalised), order of stamps
-// against the track (no duplicates or reordering), stamps from the future or the far past, speed and jumps; gives the
-// tow point's position and velocity for an accepted sample. Never throws.
+// against the track (no duplicates or reordering), stamps from the future or the far past, speed and
+// jumps; gives the tow point's position and velocity for an accepted sample. Never throws.
 OdometryResult checkOdometry(const OdometryInput& in, const OdometryLimits& limits, const ShipTrack& track, double now);
 
 }  // namespace tow_sim
