@@ -17,6 +17,12 @@ OdometryResult checkOdometry(const OdometryInput& in, const OdometryLimits& limi
   if (!std::isfinite(in.t) || !in.p_W.allFinite() || !in.q_wxyz.allFinite() || !in.v_S.allFinite() ||
       !in.w_S.allFinite())
     return refuse("a stamp, pose or twist field is not finite");
+  if (!(in.p_W.cwiseAbs().maxCoeff() <= limits.max_position))
+  {
+    std::ostringstream os;
+    os << "pose.pose.position has a component beyond +-" << limits.max_position << " m";
+    return refuse(os.str());
+  }
   const double norm = in.q_wxyz.norm();
   if (std::abs(norm - 1.0) > 0.01)
   {

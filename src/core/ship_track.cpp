@@ -66,6 +66,12 @@ bool ShipTrack::add(double t, const Eigen::Vector3d& p_W, const Eigen::Vector3d&
   return true;
 }
 
+void ShipTrack::dropBefore(double t)
+{
+  while (samples_.size() > 2 && samples_[1].t <= t)
+    samples_.pop_front();
+}
+
 ShipEndState ShipTrack::operator()(double t) const
 {
   ShipEndState out;

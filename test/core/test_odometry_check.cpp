@@ -72,6 +72,12 @@ TEST(OdometryCheck, RefusesEachKindOfBadMessage)
   in = good(1.5);
   in.p_W.y() = 3000.0;
   refused(in, "jumped");
+  ShipTrack none;
+  in = good(1.5);
+  in.p_W.x() = 2e7;  // 20 000 km: joints could no longer be told apart in double precision
+  const OdometryResult far = checkOdometry(in, limits, none, 2.0);
+  EXPECT_FALSE(far.accepted);
+  EXPECT_NE(far.reason.find("pose.pose.position has a component beyond"), std::string::npos) << far.reason;
   // Nearly unit quaternions are normalised and accepted.
   in = good(1.5);
   in.q_wxyz = Eigen::Vector4d(1.005, 0, 0, 0);

@@ -79,6 +79,34 @@ TEST(ShipTrack, ZeroOrStaleTwistDoesNotMakeTheTrackSwing)
     EXPECT_LT(burst(t).v_W.norm(), 2.5) << t;
 }
 
+TEST(ShipTrack, DroppingThePastLeavesTheTrackFromThenOnUnchanged)
+{
+  // A turn sampled at 50 Hz: a twin that forgets everything before t = 5.05 s gives the same tow point,
+  // to the bit, at 5.05 s and after, and keeps three samples or fewer before it.
+  const double speed = 2.0, radius = 100.0, w = speed / radius;
+  ShipTrack full(1.0, 100000), pruned(1.0, 100000);
+  for (int i = 0; i <= 500; ++i)
+  {
+    const double t = 0.02 * i;
+    const Eigen::Vector3d p(radius * std::sin(w * t), radius * (1 - std::cos(w * t)), 0);
+    const Eigen::Vector3d v(speed * std::cos(w * t), speed * std::sin(w * t), 0);
+    full.add(t, p, v);
+    pruned.add(t, p, v);
+  }
+  pruned.dropBefore(5.05);
+  EXPECT_LE(pruned.oldestTime(), 5.05);
+  EXPECT_GT(pruned.oldestTime(), 5.0);
+  for (double t = 5.05; t < 11.0; t += 0.0173)
+  {
+    EXPECT_EQ(pruned(t).p_W, full(t).p_W) << t;
+    EXPECT_EQ(pruned(t).v_W, full(t).v_W) << t;
+    EXPECT_EQ(pruned(t).a_W, full(t).a_W) << t;
+  }
+  pruned.dropBefore(1e9);  // past the newest sample: two stay, for the extrapolation
+  EXPECT_EQ(pruned.newestTime(), full.newestTime());
+  EXPECT_EQ(pruned(10.5).p_W, full(10.5).p_W);
+}
+
 TEST(ShipTrack, ExtrapolatesForABoundedTimeAndRejectsBadSamples)
 {
   ShipTrack track(0.5);

@@ -28,6 +28,7 @@ struct OdometryLimits
   double max_future = 1.0;          // [s] stamps later than now + this are refused
   double max_age = 10.0;            // [s] stamps earlier than now - this are refused (a publisher on another clock)
   double max_jump_slack = 10.0;     // [m] a sample may land this far from the extrapolated track, plus speed x dt
+  double max_position = 1e7;        // [m] each position component within +-this (joints 1e-9 m apart in double)
 };
 
 struct OdometryResult
@@ -38,7 +39,7 @@ struct OdometryResult
   Eigen::Quaterniond q_WS = Eigen::Quaterniond::Identity();  // normalised
 };
 
-// Checks frame, finiteness, unit quaternion (norm within 0.01 of 1; normalised), order of stamps
+// Checks frame, finiteness, position within max_position, unit quaternion (norm within 0.01 of 1; normalised), order of stamps
 // against the track (no duplicates or reordering), stamps from the future or the far past, speed and
 // jumps; gives the tow point's position and velocity for an accepted sample. Never throws.
 OdometryResult checkOdometry(const OdometryInput& in, const OdometryLimits& limits, const ShipTrack& track, double now);

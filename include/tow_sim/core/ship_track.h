@@ -28,6 +28,9 @@ public:
   double oldestTime() const;
   double maxExtrapolation() const { return max_extrapolation_; }
   void clear() { samples_.clear(); }
+  // Forgets the samples no longer needed to evaluate the track at t or later (the one at or before t
+  // stays), so a caller that moves forward in time keeps a short history, whatever the sample rate.
+  void dropBefore(double t);
 
 private:
   struct Sample
