@@ -3,6 +3,7 @@
 #include <geometry_msgs/TransformStamped.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -17,6 +18,24 @@ namespace tow_sim
 {
 namespace
 {
+constexpr size_t kRestartBurst = 5;      // restarts after divergence ...
+constexpr double kRestartWindow = 10.0;  // [s] of wall time within which they mean the numerics cannot work
+constexpr size_t kTrackCapacity = 100000;  // ship odometry samples at most (pruned by time as it is used)
+
+// Runs f; an exception is reported (throttled) instead of leaving a ROS callback, which would end the node.
+template <class F>
+void guarded(const char* what, F&& f)
+{
+  try
+  {
+    f();
+  }
+  catch (const std::exception& e)
+  {
+    ROS_ERROR_THROTTLE(2.0, "tow_sim: %s: %s (the node runs on)", what, e.what());
+  }
+}
+
 // The core names keys "section.key"; on the parameter server they are "section/key".
 std::invalid_argument withSlashes(const std::invalid_argument& e)
 {
@@ -79,7 +98,8 @@ NodeParams readNodeParams(const ros::NodeHandle& pnh)
   p.force_arrow_scale = readDouble(pnh, "force_arrow_scale", p.force_arrow_scale, 0.0, 10.0, "[m/N]", true);
   p.cable_marker_width = readDouble(pnh, "cable_marker_width", p.cable_marker_width, 0.0, 100.0, "[m]", true);
   p.vehicle_diameter = readDouble(pnh, "vehicle_diameter", p.vehicle_diameter, 0.0, 100.0, "[m]", true);
-  pnh.param("print_status", p.print_status, p.print_status);
+  if (pnh.hasParam("print_status") && !pnh.getParam("print_status", p.print_status))
+    throw std::invalid_argument(pnh.resolveName("print_status") + ": must be true or false");
   return p;
 }
 
@@ -102,7 +122,8 @@ SimulationConfig readConfig(const ros::NodeHandle& pnh)
 }  // namespace
 
 TowSimNode::TowSimNode(ros::NodeHandle nh, ros::NodeHandle pnh)
-  : nh_(nh), pnh_(pnh), params_(readNodeParams(pnh)), config_(readConfig(pnh)), track_(params_.max_extrapolation)
+  : nh_(nh), pnh_(pnh), params_(readNodeParams(pnh)), config_(readConfig(pnh)),
+    track_(params_.max_extrapolation, kTrackCapacity)
 {
   odometry_limits_.world_frame = params_.world_frame;
   odometry_limits_.tow_point_S = params_.tow_point_S;
@@ -115,37 +136,73 @@ TowSimNode::TowSimNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   diagnostics_.setHardwareID("tow_sim");
   diagnostics_.add("simulation", this, &TowSimNode::diagnose);
 
-  odom_sub_ = nh_.subscribe("ship/odom", 50, &TowSimNode::onOdometry, this);
-  fin_sub_ = nh_.subscribe("fins/command", 10, &TowSimNode::onFinCommand, this);
-  current_sub_ = nh_.subscribe("current", 10, &TowSimNode::onCurrent, this);
-  current_profile_sub_ = nh_.subscribe("current_profile", 2, &TowSimNode::onCurrentProfile, this);
-  winch_sub_ = nh_.subscribe("winch/command", 10, &TowSimNode::onWinchCommand, this);
+  odom_sub_ = subscribe<nav_msgs::Odometry>("ship/odom", 50, &TowSimNode::onOdometry);
+  fin_sub_ = subscribe<tow_sim::FinCommand>("fins/command", 10, &TowSimNode::onFinCommand);
+  current_sub_ = subscribe<geometry_msgs::Vector3Stamped>("current", 10, &TowSimNode::onCurrent);
+  current_profile_sub_ = subscribe<tow_sim::CurrentProfile>("current_profile", 2, &TowSimNode::onCurrentProfile);
+  winch_sub_ = subscribe<std_msgs::Float64>("winch/command", 10, &TowSimNode::onWinchCommand);
   state_pub_ = nh_.advertise<tow_sim::CableState>("cable/state", 10);
   marker_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("cable/markers", 2);
   vehicle_odom_pub_ = nh_.advertise<nav_msgs::Odometry>("vehicle/odom", 10);
   fin_loads_pub_ = nh_.advertise<tow_sim::FinLoads>("vehicle/fin_loads", 10);
   reset_srv_ = pnh_.advertiseService("reset", &TowSimNode::onReset, this);
   pause_srv_ = pnh_.advertiseService("set_paused", &TowSimNode::onSetPaused, this);
-  physics_timer_ = nh_.createTimer(ros::Duration(1.0 / params_.physics_rate), &TowSimNode::physicsTick, this);
-  publish_timer_ = nh_.createTimer(ros::Duration(1.0 / params_.publish_rate), &TowSimNode::publishTick, this);
+  physics_timer_ = nh_.createTimer(ros::Duration(1.0 / params_.physics_rate), [this](const ros::TimerEvent& e) {
+    guarded("physics tick", [&] { physicsTick(e); });
+  });
+  publish_timer_ = nh_.createTimer(ros::Duration(1.0 / params_.publish_rate), [this](const ros::TimerEvent& e) {
+    guarded("publishing", [&] { publishTick(e); });
+  });
   if (params_.print_status)
     status_timer_ = nh_.createTimer(ros::Duration(1.0), [this](const ros::TimerEvent&) {
-      if (!started_)
-      {
-        ROS_INFO("waiting for ship odometry on %s", odom_sub_.getTopic().c_str());
-        return;
-      }
-      const VehicleOutputs o =
-          vehicle_->outputs(sim_->time(), sim_->elementKinematics(model_->segments()), model_->environment());
-      const Diversion d = lateralDiversion(o.p_cg_W, o.v_cg_W, sim_->shipEnd(), track_direction_);
-      ROS_INFO("t %7.1f s | ship %4.2f m/s | vehicle depth %6.1f m, diversion %6.2f m | tension ship %7.0f N, "
-               "vehicle %6.0f N",
-               sim_->time(), sim_->shipEnd().v_W.norm(), o.depth, d.offset, sim_->tensions().col(0).norm(),
-               sim_->tensions().col(model_->segments()).norm());
+      guarded("status line", [this] { printStatus(); });
     });
   ROS_INFO("tow_sim: %.0f m cable in %d segments, %.0f kg vehicle; waiting for %s in frame '%s'",
            config_.cable.length, config_.cable.segments, config_.vehicle.mass, odom_sub_.getTopic().c_str(),
            params_.world_frame.c_str());
+}
+
+template <class M>
+ros::Subscriber TowSimNode::subscribe(const std::string& topic, uint32_t queue,
+                                      void (TowSimNode::*callback)(const typename M::ConstPtr&))
+{
+  const boost::function<void(const typename M::ConstPtr&)> guarded_callback =
+      [this, callback, topic](const typename M::ConstPtr& msg) {
+        try
+        {
+          (this->*callback)(msg);
+        }
+        catch (const std::exception& e)
+        {
+          ++rejected_messages_;
+          ROS_ERROR_THROTTLE(2.0, "tow_sim: %s: %s (message dropped; the node runs on)", topic.c_str(), e.what());
+        }
+      };
+  return nh_.subscribe<M>(topic, queue, guarded_callback);
+}
+
+ros::Time TowSimNode::absolute(double t) const
+{
+  const double ns = static_cast<double>(time_origin_ns_) + t * 1e9;
+  ros::Time out;
+  out.fromNSec(static_cast<uint64_t>(std::clamp(ns, 0.0, static_cast<double>(ros::TIME_MAX.sec) * 1e9)));
+  return out;
+}
+
+void TowSimNode::printStatus()
+{
+  if (!started_)
+  {
+    ROS_INFO("waiting for ship odometry on %s", odom_sub_.getTopic().c_str());
+    return;
+  }
+  const VehicleOutputs o =
+      vehicle_->outputs(sim_->time(), sim_->elementKinematics(model_->segments()), model_->environment());
+  const Diversion d = lateralDiversion(o.p_cg_W, o.v_cg_W, sim_->shipEnd(), track_direction_);
+  ROS_INFO("t %7.1f s | ship %4.2f m/s | vehicle depth %6.1f m, diversion %6.2f m | tension ship %7.0f N, "
+           "vehicle %6.0f N",
+           sim_->time(), sim_->shipEnd().v_W.norm(), o.depth, d.offset, sim_->tensions().col(0).norm(),
+           sim_->tensions().col(model_->segments()).norm());
 }
 
 void TowSimNode::start(double t)
@@ -175,7 +232,7 @@ void TowSimNode::start(double t)
     }
     catch (const std::runtime_error& e)
     {
-      ROS_WARN("tow_sim: %s; starting from a straight line instead", e.what());
+      ROS_WARN_THROTTLE(5.0, "tow_sim: %s; starting from a straight line instead", e.what());
     }
   }
   sim_->reset(t, lift(straightChain(*model_, ship.p_W, direction, ship.v_W)));
@@ -188,7 +245,7 @@ void TowSimNode::onOdometry(const nav_msgs::Odometry::ConstPtr& msg)
   const ros::Time now = ros::Time::now();
   const ros::Time stamp = msg->header.stamp.isZero() ? now : msg->header.stamp;
   if (!started_ && track_.empty())
-    time_origin_ = stamp - ros::Duration(params_.odom_delay + 1.0);
+    time_origin_ns_ = static_cast<int64_t>(stamp.toNSec()) - static_cast<int64_t>((params_.odom_delay + 1.0) * 1e9);
   const auto& pose = msg->pose.pose;
   const auto& twist = msg->twist.twist;
   OdometryInput in;
@@ -286,7 +343,7 @@ void TowSimNode::onCurrentProfile(const tow_sim::CurrentProfile::ConstPtr& msg)
 
 void TowSimNode::onWinchCommand(const std_msgs::Float64::ConstPtr& msg)
 {
-  if (!sim_)
+  if (!started_)
   {
     ROS_WARN_THROTTLE(2.0, "tow_sim: winch/command ignored: no ship odometry yet");
     return;
@@ -313,6 +370,8 @@ bool TowSimNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Respons
     res.message = "no ship odometry yet";
     return true;
   }
+  diverging_ = false;
+  restart_walls_.clear();
   start(started_ ? sim_->time() : track_.newestTime());
   res.success = true;
   res.message = "restarted from the initial shape (" + params_.initial_shape + ") at the current ship pose";
@@ -329,8 +388,26 @@ bool TowSimNode::onSetPaused(std_srvs::SetBool::Request& req, std_srvs::SetBool:
 
 void TowSimNode::physicsTick(const ros::TimerEvent&)
 {
-  if (!started_ || paused_)
+  const ros::Time now = ros::Time::now();
+  if (!last_clock_.isZero() && now.toSec() < last_clock_.toSec() - 1.0)
+  {
+    std::ostringstream os;
+    os << "the clock jumped back " << last_clock_.toSec() - now.toSec() << " s (rosbag play -l, a simulator reset?)";
+    forgetShip(os.str());
+  }
+  last_clock_ = now;
+  holding_ = false;
+  if (!started_ || paused_ || diverging_)
     return;
+  if (sim_->time() < track_.oldestTime())
+  {
+    // Only after more than kTrackCapacity odometry messages without a physics tick (a very long pause).
+    ROS_WARN("tow_sim: the simulation (t = %.1f s) is older than the ship odometry kept (from %.1f s): laying the "
+             "cable out again at the newest odometry",
+             sim_->time(), track_.oldestTime());
+    start(track_.newestTime());
+    return;
+  }
   const double wanted = relative(ros::Time::now()) - params_.odom_delay;
   const double available = track_.newestTime() + params_.max_extrapolation;
   holding_ = wanted > available;
@@ -352,14 +429,42 @@ void TowSimNode::physicsTick(const ros::TimerEvent&)
   }
   catch (const std::runtime_error& e)
   {
-    ++restarts_;
-    ROS_ERROR_THROTTLE(5.0, "tow_sim: %s; restarting from the initial shape at the current ship pose (%d restarts)",
-                       e.what(), restarts_);
-    start(sim_->time());
+    restartAfterDivergence(e.what());
   }
+  track_.dropBefore(sim_->time());  // the simulation never looks back: the history stays short
   const double wall = (ros::WallTime::now() - wall_start).toSec();
   if (wall > 0.0)
     realtime_factor_ = 0.9 * realtime_factor_ + 0.1 * ((sim_->time() - t0) / wall);
+}
+
+void TowSimNode::restartAfterDivergence(const std::string& why)
+{
+  ++restarts_;
+  const double wall = ros::WallTime::now().toSec();
+  restart_walls_.push_back(wall);
+  while (restart_walls_.size() > kRestartBurst)
+    restart_walls_.pop_front();
+  if (restart_walls_.size() == kRestartBurst && wall - restart_walls_.front() < kRestartWindow)
+  {
+    // Restarting again would only diverge again: hold the last good state, say so, wait for ~reset.
+    diverging_ = true;
+    ROS_ERROR("tow_sim: %s; %zu restarts within %.0f s: holding the last good state until ~reset (the numerics "
+              "cannot follow this configuration: check numerics.stepper, fixed_step, max_step, cable.segments)",
+              why.c_str(), kRestartBurst, kRestartWindow);
+    return;
+  }
+  ROS_ERROR_THROTTLE(5.0, "tow_sim: %s; restarting from the initial shape at the current ship pose (%llu restarts)",
+                     why.c_str(), static_cast<unsigned long long>(restarts_));
+  start(sim_->time());
+}
+
+void TowSimNode::forgetShip(const std::string& why)
+{
+  ROS_WARN("tow_sim: %s: laying the cable out again at the next ship odometry", why.c_str());
+  track_.clear();
+  started_ = false;
+  holding_ = false;
+  last_tf_stamp_ = ros::Time();
 }
 
 void TowSimNode::publishTick(const ros::TimerEvent&)
@@ -463,14 +568,20 @@ void TowSimNode::publishTick(const ros::TimerEvent&)
 void TowSimNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
 {
   using diagnostic_msgs::DiagnosticStatus;
-  if (!started_)
+  const bool recent_restart =
+      !restart_walls_.empty() && ros::WallTime::now().toSec() - restart_walls_.back() < kRestartWindow;
+  if (diverging_)
+    status.summary(DiagnosticStatus::ERROR, "diverging repeatedly: holding the last good state until ~reset");
+  else if (recent_restart)
+    status.summary(DiagnosticStatus::ERROR, "restarted after divergence");
+  else if (!started_)
     status.summary(DiagnosticStatus::WARN, "waiting for ship odometry");
+  else if (paused_)
+    status.summary(DiagnosticStatus::OK, "paused");
   else if (holding_)
     status.summary(DiagnosticStatus::WARN, "ship odometry is late: holding");
   else if (lag_ > 1.0)
     status.summary(DiagnosticStatus::WARN, "cannot keep up with the clock");
-  else if (paused_)
-    status.summary(DiagnosticStatus::OK, "paused");
   else
     status.summary(DiagnosticStatus::OK, "running");
   status.add("real-time factor", realtime_factor_);

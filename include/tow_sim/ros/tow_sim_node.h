@@ -12,6 +12,8 @@
 #include <std_srvs/Trigger.h>
 #include <tf2_ros/transform_broadcaster.h>
 
+#include <cstdint>
+#include <deque>
 #include <memory>
 #include <string>
 
@@ -67,10 +69,22 @@ private:
   void physicsTick(const ros::TimerEvent& event);
   void publishTick(const ros::TimerEvent& event);
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
+  void printStatus();  // the status line (print_status)
 
   void start(double t);  // the initial shape at the ship's pose at time t (relative)
-  double relative(const ros::Time& stamp) const { return (stamp - time_origin_).toSec(); }
-  ros::Time absolute(double t) const { return time_origin_ + ros::Duration(t); }
+  void restartAfterDivergence(const std::string& why);
+  void forgetShip(const std::string& why);  // drops the track; the next odometry lays the cable out again
+  // Times on the simulation's axis: seconds since time_origin_ns_, in 64-bit nanoseconds, so no stamp
+  // (zero, before the origin, ros::TIME_MAX) can make ros::Time arithmetic throw.
+  double relative(const ros::Time& stamp) const
+  {
+    return static_cast<double>(static_cast<int64_t>(stamp.toNSec()) - time_origin_ns_) * 1e-9;
+  }
+  ros::Time absolute(double t) const;
+  // Subscribes with `callback` guarded: no exception leaves a callback (the node runs on, says why).
+  template <class M>
+  ros::Subscriber subscribe(const std::string& topic, uint32_t queue,
+                            void (TowSimNode::*callback)(const typename M::ConstPtr&));
 
   ros::NodeHandle nh_, pnh_;
   NodeParams params_;
@@ -83,8 +97,9 @@ private:
   OdometryLimits odometry_limits_;
   AttitudeHold attitude_;
 
-  ros::Time time_origin_;
+  int64_t time_origin_ns_ = 0;
   ros::Time last_tf_stamp_;
+  ros::Time last_clock_;  // ros::Time::now() at the previous physics tick, to see the clock jump back
   bool started_ = false;
   bool paused_ = false;
   Eigen::Quaterniond ship_attitude_ = Eigen::Quaterniond::Identity();
@@ -94,9 +109,11 @@ private:
   // Diagnostics.
   double realtime_factor_ = 0.0;
   double lag_ = 0.0;
-  int rejected_steps_ = 0;
-  int rejected_messages_ = 0;
-  int restarts_ = 0;
+  uint64_t rejected_steps_ = 0;
+  uint64_t rejected_messages_ = 0;
+  uint64_t restarts_ = 0;
+  std::deque<double> restart_walls_;  // [s] wall times of the recent restarts (at most kRestartBurst)
+  bool diverging_ = false;            // kRestartBurst restarts within kRestartWindow: holding until ~reset
   double max_length_error_ = 0.0;
   bool holding_ = false;
 
