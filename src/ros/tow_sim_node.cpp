@@ -23,16 +23,19 @@ constexpr double kRestartWindow = 10.0;  // [s] of wall time within which they m
 constexpr size_t kTrackCapacity = 100000;  // ship odometry samples at most (pruned by time as it is used)
 
 // Runs f; an exception is reported (throttled) instead of leaving a ROS callback, which would end the node.
+// Returns false if f threw.
 template <class F>
-void guarded(const char* what, F&& f)
+bool guarded(const char* what, F&& f)
 {
   try
   {
     f();
+    return true;
   }
   catch (const std::exception& e)
   {
     ROS_ERROR_THROTTLE(2.0, "tow_sim: %s: %s (the node runs on)", what, e.what());
+    return false;
   }
 }
 
@@ -168,15 +171,8 @@ ros::Subscriber TowSimNode::subscribe(const std::string& topic, uint32_t queue,
 {
   const boost::function<void(const typename M::ConstPtr&)> guarded_callback =
       [this, callback, topic](const typename M::ConstPtr& msg) {
-        try
-        {
-          (this->*callback)(msg);
-        }
-        catch (const std::exception& e)
-        {
-          ++rejected_messages_;
-          ROS_ERROR_THROTTLE(2.0, "tow_sim: %s: %s (message dropped; the node runs on)", topic.c_str(), e.what());
-        }
+        if (!guarded(topic.c_str(), [&] { (this->*callback)(msg); }))
+          ++rejected_messages_;  // the message is dropped
       };
   return nh_.subscribe<M>(topic, queue, guarded_callback);
 }
@@ -408,7 +404,7 @@ void TowSimNode::physicsTick(const ros::TimerEvent&)
     start(track_.newestTime());
     return;
   }
-  const double wanted = relative(ros::Time::now()) - params_.odom_delay;
+  const double wanted = relative(now) - params_.odom_delay;
   const double available = track_.newestTime() + params_.max_extrapolation;
   holding_ = wanted > available;
   if (holding_)
