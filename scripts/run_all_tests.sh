@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# `make test`: every stage runs even when an earlier one failed, its exit status is recorded, and
+# scripts/test_summary.py gives the verdict over all of them (the expected results of every suite
+# included, so a test that never ran is a failure). Called by the Makefile with WS, REPO, JOBS,
+# CATKIN_ARGS and FUZZ_SECONDS in the environment.
+set -o pipefail
+: "${WS:?}" "${REPO:?}" "${JOBS:?}" "${CATKIN_ARGS:?}" "${FUZZ_SECONDS:?}"
+stages="$WS/test_stages.txt"
+: > "$stages"
+
+# Runs a stage ("name" then the command); records its exit status; never stops the script.
+stage() {
+  local name="$1"
+  shift
+  "$@"
+  local status=$?
+  echo "$name $status" >> "$stages"
+  [[ $status == 0 ]] || echo "== stage '$name' failed with status $status"
+  return 0
+}
+
+run_tests() {
+  cd "$WS" && source devel/setup.bash && catkin_make $CATKIN_ARGS -j1 run_tests > "$WS/run_tests.log" 2>&1
+  local status=$?
+  if [[ $status != 0 ]]; then
+    tail -n 60 "$WS/run_tests.log"
+    echo "catkin_make run_tests failed (log: $WS/run_tests.log)"
+  fi
+  return $status
+}
+
+cd "$WS" && rm -rf build/test_results
+stage "build the tests" bash -c "cd '$WS' && catkin_make $CATKIN_ARGS -j$JOBS tests"
+stage "catkin_make run_tests" run_tests
+# The figures the tests print, for the log.
+grep -E '^(\[  (PASSED|FAILED) |\[==========\] [0-9]+ tests? from .* ran)|critical angle|energy drift|mode [0-9]:|length error|trim at|after 60 s|yawed|pitched|incidence|CB [0-9]|equilibrium|rviz screenshot|drift from|reversing|odometry at|soak|cable/state|late step|unstable node|slope' \
+  "$WS/run_tests.log" || true
+stage "make sanitize" make --no-print-directory -C "$REPO" sanitize
+suites=(--suite "gtest/rostest" "$WS/build/test_results" "$WS/build/tow_sim/tow_sim_expected_results.txt"
+        --suite "core tests under ASan+UBSan" "$WS/sanitize/test_results" "$WS/sanitize/tow_sim_expected_results.txt")
+if [[ "$FUZZ_SECONDS" != 0 ]]; then
+  stage "make fuzz" make --no-print-directory -C "$REPO" fuzz
+  suites+=(--suite "fuzz targets, $FUZZ_SECONDS s each" "$WS/fuzz/test_results" "$WS/fuzz/tow_sim_expected_fuzz_results.txt")
+fi
+/usr/bin/python3 "$REPO/scripts/test_summary.py" "${suites[@]}" --stages "$stages"
