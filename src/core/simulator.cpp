@@ -76,6 +76,14 @@ Diversion lateralDiversion(const Eigen::Vector3d& p_W, const Eigen::Vector3d& v_
   return d;
 }
 
+std::vector<bool> slackFlags(const Eigen::Matrix3Xd& joints, const Eigen::Matrix3Xd& tensions)
+{
+  std::vector<bool> slack(static_cast<size_t>(tensions.cols()));
+  for (Eigen::Index j = 0; j < tensions.cols(); ++j)
+    slack[static_cast<size_t>(j)] = tensions.col(j).dot(joints.col(j + 1) - joints.col(j)) > 0.0;
+  return slack;
+}
+
 Simulator::Simulator(std::shared_ptr<ChainModel> model, ShipMotion ship, const WinchParams& winch)
   : model_(std::move(model)), ship_(std::move(ship)), solver_(*model_), winch_(winch)
 {

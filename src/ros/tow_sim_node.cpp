@@ -492,8 +492,9 @@ void TowSimNode::publishTick(const ros::TimerEvent&)
   {
     state.tension.push_back(tensions.col(j).norm());
     state.tension_vector.push_back(ros_conv::toVector3(tensions.col(j)));
-    state.slack.push_back(tensions.col(j).dot(joints.col(j + 1) - joints.col(j)) > 0.0);
   }
+  for (bool slack : slackFlags(joints, tensions))
+    state.slack.push_back(slack);
   state.tension_ship = tensions.col(0).norm();
   state.tension_vehicle = tensions.col(nu).norm();
   state.vehicle_depth = o.depth;

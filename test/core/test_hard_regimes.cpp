@@ -3,6 +3,7 @@
 // and a two-hour soak with random manoeuvres and commands.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -64,7 +65,7 @@ TEST(HardRegimes, TowSpeedsFromZeroToTenMetresPerSecond)
   {
     const double drift = runFromEquilibrium(makeTow(200.0, 40), speed, 20.0);
     std::printf("speed %4.1f m/s: largest joint drift from the equilibrium in 20 s %.2e m\n", speed, drift);
-    EXPECT_LT(drift, 1e-3) << speed;
+    EXPECT_LT(drift, 1e-6) << speed;  // measured at most 1.7e-8 m
   }
 }
 
@@ -74,14 +75,19 @@ TEST(HardRegimes, CurrentFromEveryDirection)
   {
     const double a = k * kPi / 4;
     const Tow tow = makeTow(200.0, 40, VehicleParams(), Eigen::Vector3d(std::cos(a), std::sin(a), 0.0));
-    EXPECT_LT(runFromEquilibrium(tow, 2.0, 20.0), 1e-3) << "current towards " << k * 45 << " deg";
+    const double drift = runFromEquilibrium(tow, 2.0, 20.0);
+    std::printf("current towards %3d deg: drift from the equilibrium in 20 s %.2e m\n", k * 45, drift);
+    EXPECT_LT(drift, 1e-6) << "current towards " << k * 45 << " deg";
   }
 }
 
 TEST(HardRegimes, OneAndTwoThousandSegments)
 {
-  EXPECT_LT(runFromEquilibrium(makeTow(100.0, 1), 2.0, 60.0), 1e-3);
-  EXPECT_LT(runFromEquilibrium(makeTow(500.0, 2000), 2.0, 0.5), 1e-3);
+  const double one = runFromEquilibrium(makeTow(100.0, 1), 2.0, 60.0);
+  const double many = runFromEquilibrium(makeTow(500.0, 2000), 2.0, 0.5);
+  std::printf("1 segment: drift from the equilibrium in 60 s %.2e m; 2000 segments, in 0.5 s %.2e m\n", one, many);
+  EXPECT_LT(one, 1e-6);
+  EXPECT_LT(many, 1e-6);
 }
 
 TEST(HardRegimes, VeryLightAndVeryHeavyVehicles)
@@ -99,7 +105,7 @@ TEST(HardRegimes, VeryLightAndVeryHeavyVehicles)
   {
     const double drift = runFromEquilibrium(makeTow(300.0, 50, p), 2.0, 60.0);
     std::printf("vehicle of %.0f kg: drift from the equilibrium in 60 s %.2e m\n", p.mass, drift);
-    EXPECT_LT(drift, 1e-2);
+    EXPECT_LT(drift, 1e-6);  // measured at most 5e-9 m
   }
 }
 
@@ -118,20 +124,26 @@ simulation: {duration: 240}
   Simulator sim(tow.model, [&path](double t) { return path.tow_point(t); });
   const ShipEndState s0 = path.tow_point(0.0);
   sim.reset(0.0, steadyTowEquilibrium(*tow.model, 0.0, s0.p_W, s0.v_W).state);
-  int slack_samples = 0;
+  int slack_samples = 0, slack_while_towing = 0;
   for (int i = 1; i <= 240; ++i)
   {
     ASSERT_NO_THROW(sim.advanceTo(i * 1.0)) << "t = " << i;
     ASSERT_TRUE(sim.state().x.allFinite() && sim.tensions().allFinite());
-    const Eigen::Matrix3Xd joints = sim.jointPositions();
-    for (int j = 0; j <= tow.model->segments(); ++j)
-      if (sim.tensions().col(j).dot(joints.col(j + 1) - joints.col(j)) > 0.0)
-        ++slack_samples;
+    const std::vector<bool> slack = slackFlags(sim.jointPositions(), sim.tensions());
+    const int count = static_cast<int>(std::count(slack.begin(), slack.end(), true));
+    slack_samples += count;
+    if (i <= 30)
+      slack_while_towing += count;
   }
   const Eigen::Matrix3Xd joints = sim.jointPositions();
-  std::printf("ship reversing: vehicle %.1f m ahead of the tow point after 240 s; %d slack joint samples\n",
-              joints(0, joints.cols() - 1) - joints(0, 0), slack_samples);
+  std::printf("ship reversing: vehicle %.1f m ahead of the tow point after 240 s; %d slack joint samples (%d while "
+              "still towing ahead)\n",
+              joints(0, joints.cols() - 1) - joints(0, 0), slack_samples, slack_while_towing);
   EXPECT_LT(sim.lengthError(), 1e-9);
+  // Backing onto its own cable the ship pushes it: the rigid links carry compression, and the slack flags
+  // (what cable/state.slack publishes) say so; towing ahead, none is slack.
+  EXPECT_GT(slack_samples, 0);
+  EXPECT_EQ(slack_while_towing, 0);
   // The ship backed over its cable: the vehicle now trails ahead of the tow point (the ship moves -x).
   EXPECT_GT(joints(0, joints.cols() - 1), joints(0, 0));
 }
@@ -162,7 +174,7 @@ TEST(HardRegimes, OdometryAtOneAndTwoHundredHertz)
       track->add(i / rate, exact(i / rate).p_W, exact(i / rate).v_W);
     const double gap = (vehicleAfter([track](double t) { return (*track)(t); }) - reference).norm();
     std::printf("odometry at %.0f Hz: vehicle %.2e m from the exact-path run after 120 s\n", rate, gap);
-    EXPECT_LT(gap, rate < 2.0 ? 0.05 : 1e-3);
+    EXPECT_LT(gap, rate < 2.0 ? 1e-6 : 1e-8);  // measured 1.6e-8 m and 5.5e-10 m
   }
 }
 

@@ -43,6 +43,11 @@ struct Diversion
 Diversion lateralDiversion(const Eigen::Vector3d& p_W, const Eigen::Vector3d& v_W, const ShipEndState& ship,
                            const Eigen::Vector3d& track_direction_W);
 
+// Slack flags of the tensions T_1 .. T_{nu+1} (3 x (nu+1)) at joints x_1 .. x_{nu+2} (3 x (nu+2)): element
+// lambda is slack where its tension pushes instead of pulls, T_lambda . (x_{lambda+1} - x_lambda) > 0 (the
+// rigid links carry compression; a real cable would go slack there).
+std::vector<bool> slackFlags(const Eigen::Matrix3Xd& joints, const Eigen::Matrix3Xd& tensions);
+
 struct StepReport
 {
   int steps = 0;           // accepted steps
