@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -51,11 +52,15 @@ TEST(Water, TowedCableLiesAtTheCriticalAngle)
 
   const Eigen::Matrix3Xd joints = sim.jointPositions();
   const double phi_mid = depressionAngle(joints, cable.segments / 2);
-  std::printf("critical angle: closed form %.3f deg, middle of the cable %.3f deg\n", phi_c / kDeg, phi_mid / kDeg);
-  EXPECT_NEAR(phi_mid / kDeg, phi_c / kDeg, 0.5);
-  // Straight away from its ends: the middle half of the cable lies at the same angle.
+  double worst = 0.0;
   for (int e = cable.segments / 4; e < 3 * cable.segments / 4; ++e)
-    EXPECT_NEAR(depressionAngle(joints, e) / kDeg, phi_c / kDeg, 0.5) << "element " << e;
+    worst = std::max(worst, std::abs(depressionAngle(joints, e) - phi_c));
+  std::printf("critical angle: closed form %.4f deg, middle of the cable %.4f deg; middle half within %.1e deg\n",
+              phi_c / kDeg, phi_mid / kDeg, worst / kDeg);
+  // 0.02 deg: a normal drag off by 1 % moves the angle by about 0.1 deg.
+  EXPECT_NEAR(phi_mid / kDeg, phi_c / kDeg, 0.02);
+  // Straight away from its ends: the middle half of the cable lies at the same angle.
+  EXPECT_LT(worst / kDeg, 0.02);
   // The cable trails astern in the vertical plane of the tow.
   EXPECT_LT(joints.row(1).cwiseAbs().maxCoeff(), 1e-6);
 }
