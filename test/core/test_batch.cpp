@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <sys/stat.h>
@@ -58,6 +59,47 @@ long fileSize(const std::string& path)
   return stat(path.c_str(), &st) == 0 ? static_cast<long>(st.st_size) : -1;
 }
 
+// A fresh folder for this test process's outputs, so no test reads files an earlier run left behind.
+const std::string& outputRoot()
+{
+  static const std::string root = [] {
+    char pattern[] = "/tmp/tow_sim_test_batch_XXXXXX";
+    const char* made = mkdtemp(pattern);
+    return std::string(made ? made : "");
+  }();
+  return root;
+}
+
+// Runs a shipped scenario once per test process (whichever test asks first) and returns its output folder;
+// the run's exit status and log are kept for the tests to assert on.
+struct ScenarioRun
+{
+  std::string out, log;
+  int status = -1;
+};
+const ScenarioRun& runScenario(const std::string& name)
+{
+  static std::map<std::string, ScenarioRun> runs;
+  auto found = runs.find(name);
+  if (found != runs.end())
+    return found->second;
+  ScenarioRun& r = runs[name];
+  r.out = outputRoot() + "/" + name;
+  const std::string scenario = std::string(TOW_SIM_SOURCE_DIR) + "/scenarios/" + name + ".yaml";
+  r.log = run(std::string(TOW_SIM_BATCH_BINARY) + " --scenario " + scenario + " --out " + r.out, &r.status);
+  return r;
+}
+
+// The time series of a shipped scenario, run if it has not been yet; fails the test if it is missing.
+std::vector<std::vector<std::string>> timeseries(const std::string& name)
+{
+  const ScenarioRun& r = runScenario(name);
+  EXPECT_EQ(r.status, 0) << r.log;
+  const std::string path = r.out + "/timeseries.csv";
+  EXPECT_GT(fileSize(path), 0) << path;
+  return readCsv(path);
+}
+
 TEST(Batch, EveryScenarioRunsAndWritesTheDocumentedColumns)
 {
   const std::vector<std::string> columns = { "t", "ship_x", "ship_y", "ship_z", "ship_speed", "vehicle_x",
@@ -69,11 +111,12 @@ TEST(Batch, EveryScenarioRunsAndWritesTheDocumentedColumns)
   for (const std::string name : { "report_elevator_step", "turn_180", "speed_change", "zigzag", "winch_payout",
                                   "seabed_shoal", "sheared_current", "autopilot_depth_turn", "autopilot_terrain" })
   {
+    ASSERT_FALSE(outputRoot().empty()) << "cannot make a temporary folder";
     const std::string scenario = std::string(TOW_SIM_SOURCE_DIR) + "/scenarios/" + name + ".yaml";
-    const std::string out = "/tmp/tow_sim_test_batch_" + name;
+    const ScenarioRun& r = runScenario(name);
+    ASSERT_EQ(r.status, 0) << r.log;
+    const std::string& out = r.out;
     int status = 0;
-    const std::string log = run(std::string(TOW_SIM_BATCH_BINARY) + " --scenario " + scenario + " --out " + out, &status);
-    ASSERT_EQ(status, 0) << log;
     const Scenario sc = loadScenarioFile(scenario);
     const auto rows = readCsv(out + "/timeseries.csv");
     ASSERT_FALSE(rows.empty());
@@ -121,10 +164,15 @@ TEST(Batch, EveryScenarioRunsAndWritesTheDocumentedColumns)
 
 TEST(Batch, ReportsScenarioEffectsWithTheRightSense)
 {
-  // From the runs above: the elevator step raised the vehicle, the slow-down sank it (and, with less
-  // drag holding the cable up, the ship carries more of its weight), the port turn carried it to port.
+  // The shipped scenarios (run here unless an earlier test of this process ran them, into this process's
+  // own folder): the elevator step raised the vehicle, the slow-down sank it (and, with less drag holding
+  // the cable up, the ship carries more of its weight), the port turn carried it to port.
+  ASSERT_FALSE(outputRoot().empty()) << "cannot make a temporary folder";
+  for (const char* name : { "report_elevator_step", "speed_change", "turn_180", "winch_payout", "seabed_shoal",
+                            "sheared_current", "autopilot_depth_turn", "autopilot_terrain" })
+    ASSERT_GT(timeseries(name).size(), 100u) << name;
   auto column = [](const std::string& name, int c, int row) {
-    const auto rows = readCsv("/tmp/tow_sim_test_batch_" + name + "/timeseries.csv");
+    const auto rows = timeseries(name);
     return std::stod(rows[static_cast<size_t>(row < 0 ? static_cast<int>(rows.size()) + row : row)][static_cast<size_t>(c)]);
   };
   EXPECT_LT(column("report_elevator_step", 11, -1), column("report_elevator_step", 11, 60) - 0.2);
@@ -137,7 +185,7 @@ TEST(Batch, ReportsScenarioEffectsWithTheRightSense)
   EXPECT_GT(column("winch_payout", 11, 500), column("winch_payout", 11, 50) + 20.0);
   EXPECT_NEAR(column("winch_payout", 11, -1), column("winch_payout", 11, 50), 0.1);
   // Seabed: never more than a penalty's centimetres into it, and on the 70 m shoal at the end.
-  const auto shoal = readCsv("/tmp/tow_sim_test_batch_seabed_shoal/timeseries.csv");
+  const auto shoal = timeseries("seabed_shoal");
   for (size_t r = 1; r < shoal.size(); ++r)
     EXPECT_GT(std::stod(shoal[r][23]), -0.3) << "row " << r;
   EXPECT_LT(column("seabed_shoal", 11, -1), 70.5);
@@ -146,11 +194,11 @@ TEST(Batch, ReportsScenarioEffectsWithTheRightSense)
   EXPECT_GT(column("sheared_current", 13, 250), 5.0);
   // The autopilot in the loop, offline: 20 m up within 60 s of the step and held within 1 m through the
   // turn (the rostest of depth_autopilot_node checks the same through ROS); 25 m over the ridge.
-  const auto turn = readCsv("/tmp/tow_sim_test_batch_autopilot_depth_turn/timeseries.csv");
+  const auto turn = timeseries("autopilot_depth_turn");
   double worst = 0.0;
   for (size_t r = 161; r < turn.size(); ++r)
     worst = std::max(worst, std::abs(std::stod(turn[r][11]) - 221.8));
-  const auto ridge = readCsv("/tmp/tow_sim_test_batch_autopilot_terrain/timeseries.csv");
+  const auto ridge = timeseries("autopilot_terrain");
   double lowest = 1e9, highest = 0.0;
   for (size_t r = 101; r < ridge.size(); ++r)
   {
@@ -166,13 +214,74 @@ TEST(Batch, ReportsScenarioEffectsWithTheRightSense)
   EXPECT_GT(column("autopilot_terrain", 11, 200) - column("autopilot_terrain", 11, 800), 30.0);  // it climbed
 }
 
+// Largest difference between two CSV files of the same columns, each column measured against its own
+// scale (its largest |value| in `expected`, at least 1): blank cells must stay blank, rows and header equal.
+double largestScaledDifference(const std::vector<std::vector<std::string>>& actual,
+                               const std::vector<std::vector<std::string>>& expected, std::string* where)
+{
+  if (actual.size() != expected.size() || actual.empty() || actual[0] != expected[0])
+  {
+    *where = "header or row count (" + std::to_string(actual.size()) + " rows, expected " +
+             std::to_string(expected.size()) + ")";
+    return INFINITY;
+  }
+  const size_t columns = expected[0].size();
+  std::vector<double> scale(columns, 1.0);
+  for (size_t r = 1; r < expected.size(); ++r)
+    for (size_t c = 0; c < columns && c < expected[r].size(); ++c)
+      if (!expected[r][c].empty())
+        scale[c] = std::max(scale[c], std::abs(std::stod(expected[r][c])));
+  double worst = 0.0;
+  for (size_t r = 1; r < expected.size(); ++r)
+  {
+    if (actual[r].size() != expected[r].size())
+    {
+      *where = "row " + std::to_string(r) + " has " + std::to_string(actual[r].size()) + " cells";
+      return INFINITY;
+    }
+    for (size_t c = 0; c < columns; ++c)
+    {
+      const std::string &a = actual[r][c], &e = expected[r][c];
+      const double difference =
+          a.empty() || e.empty() ? (a.empty() == e.empty() ? 0.0 : INFINITY) : std::abs(std::stod(a) - std::stod(e)) / scale[c];
+      if (difference > worst)
+      {
+        worst = difference;
+        *where = "row " + std::to_string(r) + ", column " + expected[0][c] + ": " + a + " vs " + e;
+      }
+    }
+  }
+  return worst;
+}
+
+// The outputs recorded in test/golden/ (scripts/record_golden.sh) before a refactor: every shipped scenario
+// must reproduce them to 1e-9 of each column's scale, unless a change meant to move them re-records them.
+TEST(Batch, ShippedScenariosReproduceTheGoldenOutputs)
+{
+  ASSERT_FALSE(outputRoot().empty()) << "cannot make a temporary folder";
+  for (const std::string name : { "report_elevator_step", "turn_180", "speed_change", "zigzag", "winch_payout",
+                                  "seabed_shoal", "sheared_current", "autopilot_depth_turn", "autopilot_terrain" })
+    for (const char* file : { "timeseries.csv", "shapes.csv" })
+    {
+      const ScenarioRun& r = runScenario(name);
+      ASSERT_EQ(r.status, 0) << r.log;
+      const std::string golden = std::string(TOW_SIM_SOURCE_DIR) + "/test/golden/" + name + "/" + file;
+      ASSERT_GT(fileSize(golden), 0) << golden;
+      std::string where;
+      const double difference = largestScaledDifference(readCsv(r.out + "/" + file), readCsv(golden), &where);
+      std::printf("golden %s/%s: largest difference %.2e of the column's scale\n", name.c_str(), file, difference);
+      EXPECT_LE(difference, 1e-9) << name << "/" << file << ": " << where;
+    }
+}
+
 TEST(Batch, BadScenariosAreRefusedNamingTheKey)
 {
-  const std::string path = "/tmp/tow_sim_test_bad_scenario.yaml";
+  ASSERT_FALSE(outputRoot().empty()) << "cannot make a temporary folder";
+  const std::string path = outputRoot() + "/bad_scenario.yaml";
   auto refuse = [&](const std::string& yaml, const std::string& needle) {
     std::ofstream(path) << yaml;
     int status = 0;
-    const std::string log = run(std::string(TOW_SIM_BATCH_BINARY) + " --scenario " + path + " --out /tmp/tow_sim_bad", &status);
+    const std::string log = run(std::string(TOW_SIM_BATCH_BINARY) + " --scenario " + path + " --out " + outputRoot() + "/bad", &status);
     EXPECT_EQ(status, 2) << yaml;
     EXPECT_NE(log.find(needle), std::string::npos) << log;
   };
@@ -185,7 +294,7 @@ TEST(Batch, BadScenariosAreRefusedNamingTheKey)
   refuse("initial_state: {type: points, points: [1, 2, 3]}", "initial_state.points: must hold");
   refuse("commands: [{t: 5, payout_rate: 1}]", "commands[0].payout_rate: needs the winch");
   refuse("winch: {enabled: true, max_length: 100}", "cable.length = 500 is out of range");
-  refuse("seabed: {type: grid, grid_file: no_such_grid.yaml}", "seabed.grid_file: /tmp/no_such_grid.yaml");
+  refuse("seabed: {type: grid, grid_file: no_such_grid.yaml}", "seabed.grid_file: " + outputRoot() + "/no_such_grid.yaml");
   refuse("seabed: {type: flat, depth: -3}", "seabed.depth = -3");
   refuse("environment: {current_profile: [{depth: 50}, {depth: 20}]}", "current_profile[1].depth = 20");
   refuse("autopilot: {kp: -1}", "autopilot.kp = -1");

@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Records the golden outputs of every shipped scenario (timeseries.csv and shapes.csv) into test/golden/,
+# which Batch.ShippedScenariosReproduceTheGoldenOutputs compares each run against (1e-9 of each column's
+# scale). Run it only when a change is meant to move the results, and say in the commit which and why.
+# Usage: scripts/record_golden.sh [path/to/tow_sim_batch]   (default: the workspace beside the repository)
+set -euo pipefail
+repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+batch="${1:-$repo/../tow_sim_ws/devel/lib/tow_sim/tow_sim_batch}"
+tmp="$(mktemp -d)"
+trap 'rm -rf "$tmp"' EXIT
+for scenario in "$repo"/scenarios/*.yaml; do
+  name="$(basename "$scenario" .yaml)"
+  [[ "$name" == bathymetry_* ]] && continue  # grids, not scenarios
+  "$batch" --scenario "$scenario" --out "$tmp/$name" > /dev/null
+  mkdir -p "$repo/test/golden/$name"
+  cp "$tmp/$name/timeseries.csv" "$tmp/$name/shapes.csv" "$repo/test/golden/$name/"
+  echo "recorded $name"
+done
