@@ -1,5 +1,8 @@
-// rostest of tow_sim_node. The test plays the ship and the clock (use_sim_time): four nodes get the same
-// odometry, so the only differences between them are the commands the test sends.
+// rostest of tow_sim_node. The test plays the ship and the clock (use_sim_time): six nodes get the same
+// odometry, so the only differences between them are the commands and parameters. The clock moves in
+// steps of 0.1 s, and the next step waits until every node has published its cable/state for this one
+// (lock-step), so what the nodes see and the message counts do not depend on how fast or loaded the
+// machine is.
 #include <gtest/gtest.h>
 
 #include <diagnostic_msgs/DiagnosticArray.h>
@@ -30,12 +33,14 @@ namespace
 {
 const char* const kNodes[] = { "base", "elevator", "rudder", "robust", "unstable", "winch" };
 
+bool allFinite(const tow_sim::CableState& s);
+
 struct Recorder
 {
   std::mutex mutex;
   std::map<std::string, tow_sim::CableState> state;
   std::map<std::string, nav_msgs::Odometry> odom;
-  std::map<std::string, int> state_count, marker_count;
+  std::map<std::string, int> state_count, marker_count, non_finite_states;
   std::map<std::string, std::string> diagnostics;  // "<node>/<key>" -> value
 };
 
@@ -55,6 +60,8 @@ public:
                                                            std::lock_guard<std::mutex> lock(rec_.mutex);
                                                            rec_.state[n] = *m;
                                                            ++rec_.state_count[n];
+                                                           if (!allFinite(*m))
+                                                             ++rec_.non_finite_states[n];
                                                          }));
       subs_.push_back(nh_.subscribe<nav_msgs::Odometry>("/" + n + "/vehicle/odom", 50,
                                                         [this, n](const nav_msgs::Odometry::ConstPtr& m) {
@@ -86,28 +93,57 @@ public:
             clock_pub_.getNumSubscribers() < 6) &&
            ros::WallTime::now() < give_up)
       ros::WallDuration(0.05).sleep();
-  }
-
-  // Advances the clock by `seconds` in 10 ms steps (about 4x faster than real time), the ship towing
-  // at 2 m/s along +x and its odometry at 20 Hz.
-  void advance(double seconds)
-  {
-    const int steps = static_cast<int>(std::round(seconds / 0.01));
-    for (int i = 0; i < steps; ++i)
+    // Each node starts at the first odometry: tick until every one has published (not a lock-step yet).
+    while (ros::WallTime::now() < give_up)
     {
+      {
+        std::lock_guard<std::mutex> lock(rec_.mutex);
+        bool all = true;
+        for (const char* name : kNodes)
+          all = all && rec_.state_count[name] > 0;
+        if (all)
+          break;
+      }
       time_ += 0.01;
       publishClock();
       if (++tick_ % 5 == 0)
       {
-        nav_msgs::Odometry odom = shipOdometry();
-        odom_pub_.publish(odom);
-        robust_odom_pub_.publish(odom);
+        odom_pub_.publish(shipOdometry());
+        robust_odom_pub_.publish(shipOdometry());
       }
-      ros::WallDuration(0.0025).sleep();
+      ros::WallDuration(0.01).sleep();
     }
-    ros::WallDuration(0.2).sleep();  // let the last messages arrive
   }
 
+  // Advances the clock by `seconds` in steps of 0.1 s (ten clock ticks of 10 ms, the ship towing at 2 m/s
+  // along +x with its odometry at 20 Hz); after each step it waits until every node has published a
+  // cable/state (publish_rate 10 Hz: once per step), at most `wait` of wall time, else the step counts as late.
+  void advance(double seconds, double wait = 10.0)
+  {
+    const int steps = static_cast<int>(std::round(seconds / 0.1));
+    for (int i = 0; i < steps; ++i)
+    {
+      std::map<std::string, int> before;
+      {
+        std::lock_guard<std::mutex> lock(rec_.mutex);
+        before = rec_.state_count;
+      }
+      for (int tick = 0; tick < 10; ++tick)
+      {
+        time_ += 0.01;
+        publishClock();
+        if (++tick_ % 5 == 0)
+        {
+          nav_msgs::Odometry odom = shipOdometry();
+          odom_pub_.publish(odom);
+          robust_odom_pub_.publish(odom);
+        }
+      }
+      waitForEveryNode(before, wait);
+    }
+  }
+
+  int lateSteps() const { return late_steps_; }
   nav_msgs::Odometry shipOdometry() const
   {
     nav_msgs::Odometry odom;
@@ -130,10 +166,36 @@ public:
 
   ros::NodeHandle nh_;
   Recorder rec_;
+  // Listening from the start: the lock-step clock runs far faster than real time, so a listener made
+  // later could miss every transform before its subscription is connected.
+  tf2_ros::Buffer tf_buffer_;
+  tf2_ros::TransformListener tf_listener_{ tf_buffer_ };
   double time_ = 100.0;
   ros::Publisher robust_odom_pub_;
 
 private:
+  void waitForEveryNode(const std::map<std::string, int>& before, double wait)
+  {
+    const ros::WallTime give_up = ros::WallTime::now() + ros::WallDuration(wait);
+    while (ros::WallTime::now() < give_up)
+    {
+      {
+        std::lock_guard<std::mutex> lock(rec_.mutex);
+        bool all = true;
+        for (const char* name : kNodes)
+        {
+          const auto was = before.find(name);
+          all = all && rec_.state_count[name] > (was == before.end() ? 0 : was->second);
+        }
+        if (all)
+          return;
+      }
+      ros::WallDuration(0.0005).sleep();
+    }
+    ++late_steps_;
+    std::printf("late step at %.2f s: not every node published within %.1f s of wall time\n", time_, wait);
+  }
+
   void publishClock()
   {
     rosgraph_msgs::Clock c;
@@ -142,6 +204,7 @@ private:
   }
 
   long tick_ = 0;
+  int late_steps_ = 0;
   ros::AsyncSpinner spinner_{ 2 };
   ros::Publisher clock_pub_, odom_pub_;
   std::map<std::string, ros::Publisher> fin_pubs_;
@@ -175,9 +238,12 @@ TEST(TowSimNode, PublishesStateAndMarkersAtTheConfiguredRates)
   std::lock_guard<std::mutex> lock(world->rec_.mutex);
   const int states = world->rec_.state_count["base"] - states0;
   const int markers = world->rec_.marker_count["base"] - markers0;
-  std::printf("in 10 s of simulated time: %d cable/state, %d cable/markers (publish_rate 10 Hz)\n", states, markers);
-  EXPECT_NEAR(states, 100, 15);
-  EXPECT_NEAR(markers, 100, 15);
+  std::printf("in 10 s of simulated time: %d cable/state, %d cable/markers (publish_rate 10 Hz); %d late steps\n",
+              states, markers, world->lateSteps());
+  // Lock-step: one publish tick per 0.1 s of clock, whatever the machine's load.
+  EXPECT_NEAR(states, 100, 1);
+  EXPECT_NEAR(markers, 100, 1);
+  EXPECT_EQ(world->lateSteps(), 0);
   for (const char* name : kNodes)
   {
     const tow_sim::CableState& s = world->rec_.state[name];
@@ -191,8 +257,7 @@ TEST(TowSimNode, PublishesStateAndMarkersAtTheConfiguredRates)
 
 TEST(TowSimNode, TfToTheVehicleMatchesVehicleOdometry)
 {
-  tf2_ros::Buffer buffer;
-  tf2_ros::TransformListener listener(buffer);
+  tf2_ros::Buffer& buffer = world->tf_buffer_;
   world->advance(3.0);
   nav_msgs::Odometry odom;
   {
@@ -200,8 +265,11 @@ TEST(TowSimNode, TfToTheVehicleMatchesVehicleOdometry)
     odom = world->rec_.odom["base"];
   }
   ASSERT_EQ(odom.child_frame_id, "base_vehicle");
-  const geometry_msgs::TransformStamped tf = buffer.lookupTransform("odom", "base_vehicle", odom.header.stamp,
-                                                                     ros::Duration(1.0));
+  // The clock stands still between steps, so wait in wall time (a timeout in ROS time would never pass).
+  const ros::WallTime give_up = ros::WallTime::now() + ros::WallDuration(10.0);
+  while (!buffer.canTransform("odom", "base_vehicle", odom.header.stamp) && ros::WallTime::now() < give_up)
+    ros::WallDuration(0.01).sleep();
+  const geometry_msgs::TransformStamped tf = buffer.lookupTransform("odom", "base_vehicle", odom.header.stamp);
   EXPECT_NEAR(tf.transform.translation.x, odom.pose.pose.position.x, 1e-9);
   EXPECT_NEAR(tf.transform.translation.y, odom.pose.pose.position.y, 1e-9);
   EXPECT_NEAR(tf.transform.translation.z, odom.pose.pose.position.z, 1e-9);
@@ -318,27 +386,43 @@ TEST(TowSimNode, PauseAndResetServicesWork)
   EXPECT_NEAR(s.vehicle_depth, 100.0 * std::sin(0.5), 3.0);
 }
 
-TEST(TowSimNode, DivergenceRestartsAndNothingNonFiniteIsPublished)
+TEST(TowSimNode, DivergenceRestartsThenHoldsAndNothingNonFiniteIsPublished)
 {
-  // The unstable node has been diverging since the start: it says so and keeps publishing finite states.
-  world->advance(2.0);
-  std::lock_guard<std::mutex> lock(world->rec_.mutex);
-  int restarts = -1;
-  for (const auto& kv : world->rec_.diagnostics)
-    if (kv.first.find("unstable") != std::string::npos && kv.first.find("restarts after divergence") != std::string::npos)
-      restarts = std::atoi(kv.second.c_str());
-  std::printf("unstable node: %d restarts after divergence, %d cable/state messages\n", restarts,
-              world->rec_.state_count["unstable"]);
-  EXPECT_GE(restarts, 1);
-  EXPECT_GT(world->rec_.state_count["unstable"], 0);
-  EXPECT_TRUE(allFinite(world->rec_.state["unstable"]));
-  // Diverging since the start, it restarts a few times, then holds and says so (an error, not a loop).
+  // The unstable node has been diverging since the start: it restarts a few times, then holds its last good
+  // state and says so (an error, not a loop); it never publishes a non-finite state.
+  auto unstable = [](const std::string& key) {
+    for (const auto& kv : world->rec_.diagnostics)
+      if (kv.first.find("unstable") != std::string::npos && kv.first.find(key) != std::string::npos)
+        return kv.second;
+    return std::string();
+  };
   std::string summary;
-  for (const auto& kv : world->rec_.diagnostics)
-    if (kv.first.find("unstable") != std::string::npos && kv.first.find("/summary") != std::string::npos)
-      summary = kv.second;
-  std::printf("unstable node: diagnostics say '%s'\n", summary.c_str());
-  EXPECT_NE(summary.find("diverg"), std::string::npos) << summary;
+  for (int i = 0; i < 30 && summary.find("diverging repeatedly") == std::string::npos; ++i)
+  {
+    world->advance(1.0);
+    std::lock_guard<std::mutex> lock(world->rec_.mutex);
+    summary = unstable("/summary");
+  }
+  ros::Time held_stamp;
+  int restarts = -1;
+  {
+    std::lock_guard<std::mutex> lock(world->rec_.mutex);
+    restarts = std::atoi(unstable("restarts after divergence").c_str());
+    held_stamp = world->rec_.state["unstable"].header.stamp;
+    std::printf("unstable node: %d restarts after divergence, %d cable/state messages, diagnostics say '%s'\n",
+                restarts, world->rec_.state_count["unstable"], summary.c_str());
+  }
+  EXPECT_NE(summary.find("diverging repeatedly"), std::string::npos) << summary;
+  EXPECT_GE(restarts, 5);  // five restarts within 10 s make it hold
+  world->advance(5.0);
+  std::lock_guard<std::mutex> lock(world->rec_.mutex);
+  // Holding: still publishing, the same (last good) simulation time, no more restarts.
+  EXPECT_EQ(world->rec_.state["unstable"].header.stamp, held_stamp);
+  EXPECT_EQ(std::atoi(unstable("restarts after divergence").c_str()), restarts);
+  EXPECT_NE(unstable("/summary").find("diverging repeatedly"), std::string::npos);
+  for (const char* name : kNodes)
+    EXPECT_EQ(world->rec_.non_finite_states[name], 0) << name;
+  EXPECT_GT(world->rec_.state_count["unstable"], 0);
 }
 
 int rejectedMessages(const std::string& node)
@@ -427,7 +511,9 @@ TEST(TowSimNode, ClockJumpingBackLaysTheCableOutAgain)
 {
   const double before = world->time_;
   world->time_ -= 30.0;
-  world->advance(5.0);
+  // The nodes forget the ship and start again at the next odometry; their timers restart on the new clock:
+  // the first steps need not find every node publishing (at most 0.5 s of wall time for each).
+  world->advance(5.0, 0.5);
   std::lock_guard<std::mutex> lock(world->rec_.mutex);
   const auto& base = world->rec_.state["base"];
   std::printf("clock back from %.1f s to %.1f s: base node state stamped %.1f s\n", before, before - 30.0,
