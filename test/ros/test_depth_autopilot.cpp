@@ -244,6 +244,9 @@ TEST(DepthAutopilotNode, ReachesAStepSetpointAndHoldsItThroughA180DegreeTurn)
   EXPECT_GT(max_rudder, 0.01);  // track keeping was steering
   std::printf("%.0f s simulated in %.0f s of wall time; %d of the 0.1 s steps waited more than 5 s for a node\n",
               loop->time_ - 100.0, (ros::WallTime::now() - wall_start).toSec(), loop->late_steps_);
+  // A late step means a node stopped answering for 5 s of wall time: the loop then ran on timing other than
+  // the documented one, and the figures above do not hold.
+  EXPECT_EQ(loop->late_steps_, 0);
 }
 
 TEST(DepthAutopilotNode, BadSetpointsAreIgnoredAndStaleOdometryCentresTheFins)

@@ -2,8 +2,10 @@
 // dropouts of 0.5 to 5 s (longer than max_extrapolation: the node must hold, not stop publishing),
 // bursts of 50 delayed messages at once (most of them older than what already arrived), stretches
 // with a zero twist, a publisher restart, and junk messages (NaN, zero quaternion, stamps from the
-// past). Every 10 s window must hold cable/state messages at >= 80 % of the 10 Hz publish rate, all
-// finite, and the simulation must never diverge.
+// past). Every 10 s window must hold cable/state messages at the 10 Hz publish rate, all finite, and the
+// simulation must never diverge. The only allowance is for CPU starvation, measured: the time the node's
+// and this test's threads spent waiting for a processor (the kernel's run-queue wait, /proc/PID/task/*/
+// schedstat), at 10 messages a second, plus 3 messages for the window edges.
 #include <gtest/gtest.h>
 
 #include <nav_msgs/Odometry.h>
@@ -11,6 +13,9 @@
 
 #include <atomic>
 #include <cmath>
+#include <dirent.h>
+#include <fstream>
+#include <string>
 #include <cstdlib>
 #include <cstdio>
 #include <limits>
@@ -27,6 +32,42 @@ std::mutex mutex;
 int window_count = 0;
 bool all_finite = true;
 int restarts = -1;
+
+// Seconds the threads of process `pid` have waited on a run queue (ready but not running), summed.
+double runQueueWait(const std::string& pid)
+{
+  double total = 0.0;
+  const std::string tasks = "/proc/" + pid + "/task";
+  DIR* dir = opendir(tasks.c_str());
+  if (!dir)
+    return 0.0;
+  while (const dirent* entry = readdir(dir))
+  {
+    std::ifstream stat(tasks + "/" + entry->d_name + "/schedstat");
+    double on_cpu = 0.0, waiting = 0.0;
+    if (stat >> on_cpu >> waiting)
+      total += waiting * 1e-9;
+  }
+  closedir(dir);
+  return total;
+}
+
+// The process id of the tow_sim_node beside this test (the only one: rostests run one at a time), or "".
+std::string nodePid()
+{
+  DIR* dir = opendir("/proc");
+  std::string found;
+  while (const dirent* entry = dir ? readdir(dir) : nullptr)
+  {
+    std::ifstream comm(std::string("/proc/") + entry->d_name + "/comm");
+    std::string name;
+    if (std::getline(comm, name) && name == "tow_sim_node")
+      found = entry->d_name;
+  }
+  if (dir)
+    closedir(dir);
+  return found;
+}
 
 void onDiagnostics(const diagnostic_msgs::DiagnosticArray::ConstPtr& m)
 {
@@ -61,7 +102,6 @@ TEST(OdomSoak, KeepsPublishingThroughDropoutsBurstsAndRestarts)
   std::uniform_real_distribution<double> u(0.0, 1.0);
   const ros::WallTime start = ros::WallTime::now();
   double x = 0.0;
-  ros::Time last_stamp;
   auto message = [&](const ros::Time& stamp) {
     nav_msgs::Odometry m;
     m.header.stamp = stamp;
@@ -71,8 +111,18 @@ TEST(OdomSoak, KeepsPublishingThroughDropoutsBurstsAndRestarts)
     m.twist.twist.linear.x = 2.0;
     return m;
   };
+  std::string node_pid = nodePid();
+  for (int i = 0; i < 100 && node_pid.empty(); ++i)
+  {
+    ros::WallDuration(0.1).sleep();
+    node_pid = nodePid();
+  }
+  ASSERT_FALSE(node_pid.empty()) << "no tow_sim_node process";
+  auto starvation = [&node_pid] { return runQueueWait(node_pid) + runQueueWait("self"); };
   int windows = 0, worst = 1000000;
+  double worst_margin = 1e9, largest_starvation = 0.0;
   ros::WallTime window_start = ros::WallTime::now() + ros::WallDuration(10.0);  // first 10 s: start-up
+  double starvation_at_start = 0.0;
   ros::Time previous = ros::Time::now();
   while ((ros::WallTime::now() - start).toSec() < duration && ros::ok())
   {
@@ -128,24 +178,38 @@ TEST(OdomSoak, KeepsPublishingThroughDropoutsBurstsAndRestarts)
     ros::WallDuration(0.05).sleep();
     if (ros::WallTime::now() >= window_start + ros::WallDuration(10.0))
     {
+      const ros::WallTime end = ros::WallTime::now();
+      const double starved = starvation() - starvation_at_start;
       std::lock_guard<std::mutex> lock(mutex);
       if (windows > 0 || window_count > 0)
+      {
+        // At 10 Hz but for the time the node or this test waited for a processor, and 3 for the edges.
+        const double owed = 10.0 * ((end - window_start).toSec() - starved) - 3.0;
         worst = std::min(worst, window_count);
+        worst_margin = std::min(worst_margin, window_count - owed);
+        largest_starvation = std::max(largest_starvation, starved);
+        if (window_count < owed)
+          std::printf("window %d: %d cable/state in %.2f s with %.2f s of run-queue wait (owed %.1f)\n", windows,
+                      window_count, (end - window_start).toSec(), starved, owed);
+      }
       ++windows;
       window_count = 0;
-      window_start = ros::WallTime::now();
+      window_start = end;
+      starvation_at_start = starvation();
     }
     else if (windows == 0 && ros::WallTime::now() < window_start)
     {
       std::lock_guard<std::mutex> lock(mutex);
       window_count = 0;  // still in the start-up period
+      starvation_at_start = starvation();
     }
   }
-  std::printf("odometry soak: %.0f s, %d windows of 10 s, fewest cable/state messages in a window: %d (rate 10 Hz)\n",
-              duration, windows, worst);
+  std::printf("odometry soak: %.0f s, %d windows of 10 s, fewest cable/state messages in a window: %d (rate 10 Hz); "
+              "smallest margin over the rate less starvation %.1f messages; largest run-queue wait in a window %.2f s\n",
+              duration, windows, worst, worst_margin, largest_starvation);
   // A window closes at the first check after 10 s; dropouts and restarts can stretch it to 15 s.
   EXPECT_GE(windows, static_cast<int>(duration / 15.0) - 1);
-  EXPECT_GE(worst, 80);
+  EXPECT_GE(worst_margin, 0.0);
   std::lock_guard<std::mutex> lock(mutex);
   EXPECT_TRUE(all_finite);
   std::printf("odometry soak: restarts after divergence %d\n", restarts);
