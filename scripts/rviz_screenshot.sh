@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Takes a screenshot of rviz showing the running demo, under a virtual X display (Xvfb).
 # Usage: scripts/rviz_screenshot.sh OUT.png [SECONDS_TO_RUN (default 40)] [manoeuvre (default turn)] [config.yaml]
+# SECONDS_TO_RUN `markers`: as soon as the cable is laid out and rviz listens to cable/markers (at most
+# 120 s), plus 3 s to draw them.
 # Needs a built workspace (make build); uses Xvfb and ImageMagick's import.
 set -euo pipefail
 out="$(realpath -m "${1:?usage: rviz_screenshot.sh OUT.png [seconds] [manoeuvre]}")"
@@ -24,6 +26,21 @@ roslaunch -p "$port" tow_sim tow_sim.launch rviz:=true manoeuvre:="$manoeuvre" p
 launch_pid=$!
 cleanup() { kill "$launch_pid" 2>/dev/null || true; sleep 2; kill "$xvfb_pid" 2>/dev/null || true; }
 trap cleanup EXIT
-sleep "$seconds"
+if [[ "$seconds" == markers ]]; then
+  # The node publishes cable/markers once the cable is laid out (at the first ship odometry) and while
+  # someone listens: wait until rviz subscribes and the markers flow (`rostopic bw` needs no message
+  # class), then give rviz a moment to draw them.
+  for _ in $(seq 60); do
+    subscribers="$(rostopic info /cable/markers 2>/dev/null || true)"
+    flow="$(PYTHONUNBUFFERED=1 timeout 3 rostopic bw /cable/markers 2>/dev/null || true)"
+    if [[ "$subscribers" == *"/rviz "* && "$flow" == *average* ]]; then
+      break
+    fi
+    sleep 1
+  done
+  sleep 3
+else
+  sleep "$seconds"
+fi
 import -window root "$out"
 echo "wrote $out"

@@ -36,7 +36,7 @@ TEST(RvizScreenshot, TheCableIsDrawnInItsTensionColours)
   const std::string png = "/tmp/tow_sim_test_screenshot.png", ppm = "/tmp/tow_sim_test_screenshot.ppm";
   std::remove(png.c_str());
   const std::string command = std::string("WS=") + TOW_SIM_WS + " " + TOW_SIM_SOURCE_DIR +
-                              "/scripts/rviz_screenshot.sh " + png + " 30 straight";
+                              "/scripts/rviz_screenshot.sh " + png + " markers straight";
   ASSERT_EQ(std::system(command.c_str()), 0) << command;
   ASSERT_EQ(std::system(("convert " + png + " -depth 8 " + ppm).c_str()), 0);
   const Image img = readPpm(ppm);
