@@ -3,6 +3,7 @@
 // Writes DIR/timeseries.csv, DIR/shapes.csv and DIR/scenario.yaml (the scenario with every default
 // filled in). Exit codes: 0 done; 2 bad arguments or scenario; 3 the run diverged (the CSV files then
 // hold the run up to the last good output and the error says so); 4 cannot write DIR.
+#include <sys/stat.h>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -12,7 +13,6 @@
 #include <limits>
 #include <memory>
 #include <string>
-#include <sys/stat.h>
 
 #include "tow_sim/core/equilibrium.h"
 #include "tow_sim/core/scenario.h"
@@ -91,8 +91,7 @@ int main(int argc, char** argv)
     std::fprintf(stderr, "tow_sim_batch: cannot write into %s\n", out_dir.c_str());
     return 4;
   }
-  resolved << "# " << scenario_path << " with every default filled in, as run by tow_sim_batch\n"
-           << toYaml(sc) << "\n";
+  resolved << "# " << scenario_path << " with every default filled in, as run by tow_sim_batch\n" << toYaml(sc) << "\n";
   resolved.close();
 
   double t_reached = 0.0;
@@ -105,7 +104,8 @@ int main(int argc, char** argv)
     std::shared_ptr<const Seabed> seabed;
     if (sc.config.seabed.type != SeabedParams::Type::kNone)
       model->setSeabed(seabed = std::make_shared<Seabed>(sc.config.seabed));
-    Simulator sim(model, [&path](double t) { return path.tow_point(t); }, sc.config.winch);
+    Simulator sim(
+        model, [&path](double t) { return path.tow_point(t); }, sc.config.winch);
     const ShipEndState ship0 = path.tow_point(0.0);
     const Eigen::Matrix3d R0 = Eigen::AngleAxisd(sc.start_heading, Eigen::Vector3d::UnitZ()).toRotationMatrix();
     size_t next_command = 0;
@@ -139,13 +139,15 @@ int main(int argc, char** argv)
     double max_length_error = 0.0;
     // Everything due up to t_target in time order: commands, autopilot setpoints and autopilot ticks
     // (each at its own time), then the simulation to t_target.
-    auto runTo = [&](double t_target) {
+    auto runTo = [&](double t_target)
+    {
       const double never = std::numeric_limits<double>::infinity();
       for (;;)
       {
         const double t_command = next_command < sc.commands.size() ? sc.commands[next_command].t : never;
-        const double t_setpoint =
-            autopilot && next_setpoint < sc.autopilot.setpoints.size() ? sc.autopilot.setpoints[next_setpoint].t : never;
+        const double t_setpoint = autopilot && next_setpoint < sc.autopilot.setpoints.size()
+                                      ? sc.autopilot.setpoints[next_setpoint].t
+                                      : never;
         const double t_tick = autopilot ? ticks / sc.autopilot.rate : never;
         const double t_next = std::min({ t_command, t_setpoint, t_tick });
         if (t_next > t_target)
@@ -218,9 +220,9 @@ int main(int argc, char** argv)
         throw std::runtime_error("non-finite state at t = " + std::to_string(t) + " s");
       series << t << ',' << pose.x() << ',' << pose.y() << ",0," << path.speedAt(t) << ',' << o.p_cg_W.x() << ','
              << o.p_cg_W.y() << ',' << o.p_cg_W.z() << ",0," << pitch << ',' << yaw << ',' << o.depth << ','
-             << (tow.p_W - o.p_cg_W).dot(heading) << ',' << d.offset << ',' << d.rate << ',' << T.col(0).norm()
-             << ',' << T.col(nu).norm() << ',' << o.rudder << ',' << o.elevator << ',' << o.thrust << ','
-             << max_length_error << ',' << sim.cableLength() << ',' << sim.payoutRate() << ',';
+             << (tow.p_W - o.p_cg_W).dot(heading) << ',' << d.offset << ',' << d.rate << ',' << T.col(0).norm() << ','
+             << T.col(nu).norm() << ',' << o.rudder << ',' << o.elevator << ',' << o.thrust << ',' << max_length_error
+             << ',' << sim.cableLength() << ',' << sim.payoutRate() << ',';
       int contacts = 0;
       if (seabed)
       {

@@ -33,10 +33,11 @@ int main(int argc, char** argv)
     Simulator sim(model, constantVelocityShip(Eigen::Vector3d::Zero(), ship_velocity));
     sim.reset(0.0, straightChain(*model, Eigen::Vector3d::Zero(), Eigen::Vector3d(-1.0, 0.0, -0.5), ship_velocity));
 
-    std::printf("tow_sim offline demo: %.0f m cable (%d segments, D = %.3f m, %.2f kg/m), %.0f kg vehicle, ship at "
-                "%.1f m/s; elevator +0.2 rad at t = %.0f s\n",
-                cable.length, cable.segments, cable.diameter, cable.mass_per_length, vehicle->params().mass,
-                ship_velocity.norm(), duration - 120.0);
+    std::printf(
+        "tow_sim offline demo: %.0f m cable (%d segments, D = %.3f m, %.2f kg/m), %.0f kg vehicle, ship at "
+        "%.1f m/s; elevator +0.2 rad at t = %.0f s\n",
+        cable.length, cable.segments, cable.diameter, cable.mass_per_length, vehicle->params().mass,
+        ship_velocity.norm(), duration - 120.0);
     std::printf("%7s %10s %10s %11s %11s %11s %13s %9s\n", "t [s]", "depth [m]", "pitch [deg]", "layback [m]",
                 "divers. [m]", "T_ship [N]", "T_vehicle [N]", "elev [deg]");
     const auto wall_start = std::chrono::steady_clock::now();
@@ -56,9 +57,10 @@ int main(int argc, char** argv)
     }
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
     const Eigen::Vector3d tow_force = -sim.tensions().col(0);
-    std::printf("\ntow force on the ship: %.1f N aft, %.1f N down; largest relative length error %.2e; %d steps; "
-                "%.0fx faster than real time\n",
-                -tow_force.x(), -tow_force.z(), sim.lengthError(), steps, sim.time() / wall);
+    std::printf(
+        "\ntow force on the ship: %.1f N aft, %.1f N down; largest relative length error %.2e; %d steps; "
+        "%.0fx faster than real time\n",
+        -tow_force.x(), -tow_force.z(), sim.lengthError(), steps, sim.time() / wall);
     return 0;
   }
   catch (const std::exception& error)

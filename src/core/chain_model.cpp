@@ -8,7 +8,7 @@ namespace tow_sim
 {
 ChainModel::ChainModel(const CableParams& cable, std::shared_ptr<const EndBody> end_body, const Environment& env,
                        const NumericsParams& numerics)
-  : cable_(cable), end_body_(std::move(end_body)), env_(env), numerics_(numerics)
+    : cable_(cable), end_body_(std::move(end_body)), env_(env), numerics_(numerics)
 {
   validate(cable_);
   validate(env_);
@@ -62,7 +62,8 @@ void ChainModel::elementDynamics(int e, double t, const ElementKinematics& k, Bo
   // (so each joint x_2 .. x_{nu+1} once) with the stiffness of the cable that joint stands for: half of
   // each neighbouring segment (the bail: half the last one); the end body its own contact points.
   const Eigen::Vector3d x_G = k.pointAt(out.cg_fraction);
-  auto add = [&](double eta, double stiffness, double damping) {
+  auto add = [&](double eta, double stiffness, double damping)
+  {
     const Eigen::Vector3d p = k.pointAt(eta);
     const Eigen::Vector3d f = bottom->contactForce(p, k.velocityAt(eta), stiffness, damping);
     out.wrench.head<3>() += f;

@@ -272,11 +272,11 @@ SimulationConfig loadConfigUnguarded(const YAML::Node& root, const std::string& 
 {
   SimulationConfig c;
   if (root && !root.IsNull() && !root.IsMap())
-    fail(prefix.empty() ? "configuration" : prefix, "must be a mapping with the sections cable, vehicle, environment, "
-                                                    "numerics");
-  auto section = [&](const char* name) {
-    return Section(root && root.IsMap() ? root[name] : YAML::Node(), prefix + name);
-  };
+    fail(prefix.empty() ? "configuration" : prefix,
+         "must be a mapping with the sections cable, vehicle, environment, "
+         "numerics");
+  auto section = [&](const char* name)
+  { return Section(root && root.IsMap() ? root[name] : YAML::Node(), prefix + name); };
   readCable(section("cable"), c.cable);
   readEnvironment(section("environment"), c.environment);
   readNumerics(section("numerics"), c.numerics);
@@ -326,8 +326,8 @@ YAML::Node toYaml(const SimulationConfig& c)
   YAML::Node env = root["environment"];
   env["gravity"] = c.environment.gravity;
   env["water_density"] = c.environment.water_density;
-  env["current"] = std::vector<double>{ c.environment.current_W.x(), c.environment.current_W.y(),
-                                        c.environment.current_W.z() };
+  env["current"] =
+      std::vector<double>{ c.environment.current_W.x(), c.environment.current_W.y(), c.environment.current_W.z() };
   env["current_profile"] = YAML::Node(YAML::NodeType::Sequence);
   for (const CurrentSample& sample : c.environment.current_profile)
   {

@@ -10,7 +10,6 @@ namespace
 {
 constexpr double kPi = 3.14159265358979323846;
 
-
 // Below this normal speed [m/s] the direction q of the normal flow is undefined; M_V vanishes there.
 constexpr double kTinySpeed = 1e-12;
 }  // namespace
@@ -91,18 +90,20 @@ void cableSegmentDynamics(const CableSegmentModel& seg, const ElementKinematics&
   out.mass.topLeftCorner<3, 3>() = seg.mass * I3 + seg.added_mass * P;
   out.mass.bottomRightCorner<3, 3>() = (seg.mass * seg.length * seg.length / 12.0) * I3;
 
-  const VelocityForces vf = velocityForces(k, env.currentAt(k.pointAt(0.5).z()), seg.c1, seg.c2, seg.tangential_model, seg.smoothing_speed);
+  const VelocityForces vf =
+      velocityForces(k, env.currentAt(k.pointAt(0.5).z()), seg.c1, seg.c2, seg.tangential_model, seg.smoothing_speed);
   out.wrench.head<3>() = vf.force - seg.net_weight * Eigen::Vector3d::UnitZ();
   out.wrench.tail<3>() = vf.moment;
 }
 
 RigidEndElement::RigidEndElement(const EndElementParams& params, const NumericsParams& numerics)
-  : p_(params), smoothing_speed_(numerics.tangential_smoothing_speed)
+    : p_(params), smoothing_speed_(numerics.tangential_smoothing_speed)
 {
   validate(p_);
 }
 
-void RigidEndElement::dynamics(double /*t*/, const ElementKinematics& k, const Environment& env, BodyDynamics& out) const
+void RigidEndElement::dynamics(double /*t*/, const ElementKinematics& k, const Environment& env,
+                               BodyDynamics& out) const
 {
   const Eigen::Matrix3d I3 = Eigen::Matrix3d::Identity();
   const Eigen::Matrix3d P = I3 - k.s * k.s.transpose();
@@ -121,7 +122,8 @@ void RigidEndElement::dynamics(double /*t*/, const ElementKinematics& k, const E
 
   const double c1 = 0.5 * env.water_density * p_.tangential_drag_coefficient * kPi * p_.diameter;
   const double c2 = 0.5 * env.water_density * p_.normal_drag_coefficient * p_.diameter;
-  const VelocityForces vf = velocityForces(k, env.currentAt(k.pointAt(0.5).z()), c1, c2, TangentialDragModel::kPode, smoothing_speed_);
+  const VelocityForces vf =
+      velocityForces(k, env.currentAt(k.pointAt(0.5).z()), c1, c2, TangentialDragModel::kPode, smoothing_speed_);
 
   const Eigen::Vector3d weight = -p_.mass * env.gravity * Eigen::Vector3d::UnitZ();
   const Eigen::Vector3d buoyancy = env.water_density * env.gravity * p_.displaced_volume * Eigen::Vector3d::UnitZ();

@@ -154,7 +154,8 @@ EquilibriumResult shoot(const ChainModel& model, double t, const Eigen::Vector3d
   Eigen::Matrix3Xd axes(3, n);
   // The first guess for the vehicle: trailing the flow past it, slightly down.
   const Eigen::Vector3d flow = ship_velocity_W - model.environment().currentAt(joints.col(n - 1).z());
-  Eigen::Vector3d guess = flow.norm() > 1e-6 ? Eigen::Vector3d(-flow.normalized()) : Eigen::Vector3d(-Eigen::Vector3d::UnitZ());
+  Eigen::Vector3d guess =
+      flow.norm() > 1e-6 ? Eigen::Vector3d(-flow.normalized()) : Eigen::Vector3d(-Eigen::Vector3d::UnitZ());
   guess = (guess - 0.2 * Eigen::Vector3d::UnitZ()).normalized();
   Eigen::Vector3d T_aft = Eigen::Vector3d::Zero();
   for (int e = n - 1; e >= 0; --e)
@@ -184,8 +185,8 @@ EquilibriumResult shoot(const ChainModel& model, double t, const Eigen::Vector3d
       std::ostringstream os;
       os << "equilibrium: no stable direction balances element " << e + 1 << " of " << n
          << (e == n - 1 ? " (the vehicle)" : "") << " at ship velocity (" << ship_velocity_W.transpose()
-         << ") m/s and current (" << model.environment().currentAt(joints.col(e).z()).transpose() << ") m/s; moment residual "
-         << residual << " N m";
+         << ") m/s and current (" << model.environment().currentAt(joints.col(e).z()).transpose()
+         << ") m/s; moment residual " << residual << " N m";
       throw std::runtime_error(os.str());
     }
     result.largest_residual = std::max(result.largest_residual, residual);

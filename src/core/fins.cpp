@@ -15,11 +15,14 @@ namespace
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kHalfPi = 0.5 * kPi;
 
-double wrapAngle(double a) { return std::atan2(std::sin(a), std::cos(a)); }
+double wrapAngle(double a)
+{
+  return std::atan2(std::sin(a), std::cos(a));
+}
 }  // namespace
 
 AngleTable::AngleTable(std::vector<double> angles, std::vector<double> values, bool odd, const std::string& name)
-  : angles_(std::move(angles)), values_(std::move(values)), odd_(odd)
+    : angles_(std::move(angles)), values_(std::move(values)), odd_(odd)
 {
   std::ostringstream problem;
   if (angles_.size() < 2 || angles_.size() != values_.size())
@@ -115,13 +118,14 @@ void FinServo::reset(double t, double angle)
 }
 
 FinPairLoads finPairLoads(const FinPairParams& fin, FinPlane plane, double angle, const Eigen::Vector3d& v_W,
-                      const Eigen::Vector3d& x_b, const Eigen::Vector3d& y_b, const Eigen::Vector3d& z_b, double arm)
+                          const Eigen::Vector3d& x_b, const Eigen::Vector3d& y_b, const Eigen::Vector3d& z_b,
+                          double arm)
 {
   FinPairLoads out;
   out.angle = angle;
   const bool vertical = plane == FinPlane::kVertical;
-  const Eigen::Vector3d& normal = vertical ? z_b : y_b;     // normal to the plane of deflection
-  const Eigen::Vector3d& lateral = vertical ? y_b : z_b;    // where positive deflection pushes
+  const Eigen::Vector3d& normal = vertical ? z_b : y_b;   // normal to the plane of deflection
+  const Eigen::Vector3d& lateral = vertical ? y_b : z_b;  // where positive deflection pushes
   const Eigen::Vector3d v_p = v_W - v_W.dot(normal) * normal;
   const double speed2 = v_p.squaredNorm();
   if (speed2 < 1e-24)

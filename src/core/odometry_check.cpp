@@ -8,7 +8,8 @@ namespace tow_sim
 OdometryResult checkOdometry(const OdometryInput& in, const OdometryLimits& limits, const ShipTrack& track, double now)
 {
   OdometryResult r;
-  auto refuse = [&r](const std::string& why) {
+  auto refuse = [&r](const std::string& why)
+  {
     r.reason = why;
     return r;
   };

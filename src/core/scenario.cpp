@@ -190,8 +190,9 @@ Scenario loadScenarioUnguarded(const YAML::Node& root, const std::string& base_d
     {
       const CommandEvent& c = sc.commands[i];
       if (c.rudder != 0.0 || c.elevator != 0.0 || c.thrust != 0.0)
-        fail("commands[" + std::to_string(i) + "]", "rudder, elevator and thrust belong to the autopilot when there "
-                                                    "is one (payout_rate alone is allowed)");
+        fail("commands[" + std::to_string(i) + "]",
+             "rudder, elevator and thrust belong to the autopilot when there "
+             "is one (payout_rate alone is allowed)");
     }
   }
 
@@ -357,12 +358,13 @@ ShipPath buildShipPath(const Scenario& sc, double dt)
   ShipPath path{ ShipTrack(1.0, samples + 10), {}, {}, {} };
   double x = sc.start_position.x(), y = sc.start_position.y(), heading = sc.start_heading;
   double u = sc.manoeuvres.front().speed, r = 0.0, time = 0.0;
-  size_t index = 0;                 // current manoeuvre
-  double started = 0.0;             // when it started
-  double heading0 = heading;        // heading when it started
-  double speed0 = u;                // speed when it started
-  int leg = 0;                      // zigzag leg / waypoint index
-  auto advanceManoeuvre = [&]() {
+  size_t index = 0;           // current manoeuvre
+  double started = 0.0;       // when it started
+  double heading0 = heading;  // heading when it started
+  double speed0 = u;          // speed when it started
+  int leg = 0;                // zigzag leg / waypoint index
+  auto advanceManoeuvre = [&]()
+  {
     ++index;
     started = time;
     heading0 = heading;
@@ -421,7 +423,8 @@ ShipPath buildShipPath(const Scenario& sc, double dt)
     const Eigen::Matrix3d R = Eigen::AngleAxisd(heading, Eigen::Vector3d::UnitZ()).toRotationMatrix();
     const Eigen::Vector3d v_ship = R * Eigen::Vector3d(u, 0.0, 0.0);
     const Eigen::Vector3d w_ship(0.0, 0.0, r);
-    path.tow_point.add(time, Eigen::Vector3d(x, y, 0.0) + R * sc.tow_point_S, v_ship + w_ship.cross(R * sc.tow_point_S));
+    path.tow_point.add(time, Eigen::Vector3d(x, y, 0.0) + R * sc.tow_point_S,
+                       v_ship + w_ship.cross(R * sc.tow_point_S));
     path.t.push_back(time);
     path.pose.emplace_back(x, y, heading);
     path.speed.push_back(u);

@@ -3,12 +3,12 @@
 #include "tow_sim/core/params.h"
 #include "tow_sim/core/simulator.h"
 
+#include <sys/stat.h>
+#include <yaml-cpp/yaml.h>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
-#include <sys/stat.h>
-#include <yaml-cpp/yaml.h>
 
 namespace tow_sim
 {
@@ -60,7 +60,8 @@ BathymetryGrid loadBathymetryFile(const std::string& path)
         throw std::invalid_argument(path + ": " + key + ": unknown key (known keys: depth, origin, spacing)");
     }
     BathymetryGrid g;
-    auto pair = [&](const char* key) {
+    auto pair = [&](const char* key)
+    {
       const YAML::Node n = root[key];
       if (!n || !n.IsSequence() || n.size() != 2)
         throw std::invalid_argument(path + ": " + key + " must be a list of 2 numbers [m]");
@@ -88,7 +89,10 @@ BathymetryGrid loadBathymetryFile(const std::string& path)
   }
 }
 
-Seabed::Seabed(const SeabedParams& params) : p_(params) { validate(p_); }
+Seabed::Seabed(const SeabedParams& params) : p_(params)
+{
+  validate(p_);
+}
 
 namespace
 {

@@ -6,14 +6,20 @@
 namespace tow_sim
 {
 ShipTrack::ShipTrack(double max_extrapolation, size_t capacity)
-  : max_extrapolation_(max_extrapolation), capacity_(std::max<size_t>(capacity, 3))
+    : max_extrapolation_(max_extrapolation), capacity_(std::max<size_t>(capacity, 3))
 {
   if (!(max_extrapolation >= 0.0 && max_extrapolation <= 60.0))
     throw std::invalid_argument("max_extrapolation must be in [0, 60] [s]");
 }
 
-double ShipTrack::newestTime() const { return samples_.empty() ? 0.0 : samples_.back().t; }
-double ShipTrack::oldestTime() const { return samples_.empty() ? 0.0 : samples_.front().t; }
+double ShipTrack::newestTime() const
+{
+  return samples_.empty() ? 0.0 : samples_.back().t;
+}
+double ShipTrack::oldestTime() const
+{
+  return samples_.empty() ? 0.0 : samples_.front().t;
+}
 
 Eigen::Vector3d ShipTrack::differenceVelocity(size_t i) const
 {
@@ -93,8 +99,8 @@ ShipEndState ShipTrack::operator()(double t) const
     out.v_W = first.v;
     return out;
   }
-  const auto upper = std::upper_bound(samples_.begin(), samples_.end(), t,
-                                      [](double value, const Sample& s) { return value < s.t; });
+  const auto upper =
+      std::upper_bound(samples_.begin(), samples_.end(), t, [](double value, const Sample& s) { return value < s.t; });
   const Sample& s1 = *upper;
   const Sample& s0 = *(upper - 1);
   // Quintic Hermite on [0, 1] matching p, v, a at both ends (C2 across samples).

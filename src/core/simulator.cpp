@@ -1,10 +1,10 @@
 #include "tow_sim/core/simulator.h"
 
-#include <algorithm>
-#include <limits>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <boost/numeric/odeint.hpp>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -27,7 +27,8 @@ bool allFinite(const std::vector<double>& y)
 
 ShipMotion constantVelocityShip(const Eigen::Vector3d& p0_W, const Eigen::Vector3d& v_W)
 {
-  return [p0_W, v_W](double t) {
+  return [p0_W, v_W](double t)
+  {
     ShipEndState s;
     s.p_W = p0_W + t * v_W;
     s.v_W = v_W;
@@ -85,7 +86,7 @@ std::vector<bool> slackFlags(const Eigen::Matrix3Xd& joints, const Eigen::Matrix
 }
 
 Simulator::Simulator(std::shared_ptr<ChainModel> model, ShipMotion ship, const WinchParams& winch)
-  : model_(std::move(model)), ship_(std::move(ship)), solver_(*model_), winch_(winch)
+    : model_(std::move(model)), ship_(std::move(ship)), solver_(*model_), winch_(winch)
 {
   if (!ship_)
     throw std::invalid_argument("Simulator: no ship motion given");
@@ -109,8 +110,14 @@ double Simulator::setWinchCommand(double payout_rate)
   return winch_command_;
 }
 
-double Simulator::cableLength() const { return y_[6 * model_->jointCount()]; }
-double Simulator::payoutRate() const { return y_[6 * model_->jointCount() + 1]; }
+double Simulator::cableLength() const
+{
+  return y_[6 * model_->jointCount()];
+}
+double Simulator::payoutRate() const
+{
+  return y_[6 * model_->jointCount() + 1];
+}
 
 double Simulator::winchAcceleration(double length, double rate) const
 {
@@ -308,7 +315,10 @@ double Simulator::lengthErrorOf(const StateVector& y, double t) const
   return maxRelativeLengthError(*model_, ship_(t).p_W, s);
 }
 
-double Simulator::lengthError() const { return lengthErrorOf(y_, t_); }
+double Simulator::lengthError() const
+{
+  return lengthErrorOf(y_, t_);
+}
 
 double Simulator::largestRelativeSpeed(double t) const
 {
@@ -335,9 +345,9 @@ StepReport Simulator::advanceTo(double t_end)
   refreshOutputs();
   // While the winch runs, a step shortens the first segment by at most half the band's lower edge (the
   // rate stays within max_rate), so it never collapses before the merge that follows the step.
-  const double winch_step = winch_.enabled ? 0.5 * winch_.segment_min_fraction * model_->nominalSegmentLength() /
-                                                 winch_.max_rate
-                                           : std::numeric_limits<double>::infinity();
+  const double winch_step = winch_.enabled
+                                ? 0.5 * winch_.segment_min_fraction * model_->nominalSegmentLength() / winch_.max_rate
+                                : std::numeric_limits<double>::infinity();
   StepReport report;
   StateVector y_prev;
   while (t_end - t_ > 1e-12 * std::max(1.0, std::abs(t_end)))
@@ -363,8 +373,8 @@ StepReport Simulator::advanceTo(double t_end)
         if (dt_ < kMinStep)
         {
           refreshOutputs();  // the rejected stages left the winch's first segment at a trial value
-          throw std::runtime_error("integration failed: the adaptive step fell below 1e-10 s at t = " +
-                                   std::to_string(t_) + " s");
+          throw std::runtime_error(
+              "integration failed: the adaptive step fell below 1e-10 s at t = " + std::to_string(t_) + " s");
         }
         continue;
       }

@@ -41,10 +41,12 @@ void validate(const VehicleParams& v, const std::string& p)
   requireInRange(p + ".vertical_fin_from_bail", v.vertical_fin_from_bail, lo, hi, along);
   requireInRange(p + ".mass", v.mass, 0.0, 1e6, "[kg]", true);
   requireInRange(p + ".displaced_volume", v.displaced_volume, 0.0, 1e3, "[m^3]");
-  if (!v.inertia_B.allFinite() || (v.inertia_B - v.inertia_B.transpose()).cwiseAbs().maxCoeff() > 1e-9 * v.inertia_B.norm() ||
+  if (!v.inertia_B.allFinite() ||
+      (v.inertia_B - v.inertia_B.transpose()).cwiseAbs().maxCoeff() > 1e-9 * v.inertia_B.norm() ||
       Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(v.inertia_B).eigenvalues().minCoeff() <= 0.0)
-    throw std::invalid_argument(p + ".inertia must be a finite, symmetric, positive definite 3x3 matrix [kg m^2] "
-                                    "about the CG in body axes (xx, yy, zz > 0)");
+    throw std::invalid_argument(p +
+                                ".inertia must be a finite, symmetric, positive definite 3x3 matrix [kg m^2] "
+                                "about the CG in body axes (xx, yy, zz > 0)");
   requireInRange(p + ".c1", v.c1, 0.0, 1e6, "[N s^2/m^3]");
   requireInRange(p + ".c2", v.c2, 0.0, 1e6, "[N s^2/m^3]");
   requireInRange(p + ".added_mass.e", v.added_mass_a, 0.0, 1e6, "[kg]");
@@ -117,10 +119,10 @@ struct Vehicle::Loads
 };
 
 Vehicle::Vehicle(const VehicleParams& params, const NumericsParams& numerics)
-  : p_(params)
-  , smoothing_speed_(numerics.tangential_smoothing_speed)
-  , rudder_servo_(params.rudder.max_deflection, params.rudder.max_rate)
-  , elevator_servo_(params.elevator.max_deflection, params.elevator.max_rate)
+    : p_(params),
+      smoothing_speed_(numerics.tangential_smoothing_speed),
+      rudder_servo_(params.rudder.max_deflection, params.rudder.max_rate),
+      elevator_servo_(params.elevator.max_deflection, params.elevator.max_rate)
 {
   validate(p_);
   added_mass_b_ = p_.added_mass_b;

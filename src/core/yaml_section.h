@@ -1,6 +1,7 @@
 // A YAML mapping with its key path, for the configuration and scenario loaders (private to the core).
 #pragma once
 
+#include <yaml-cpp/yaml.h>
 #include <Eigen/Core>
 #include <cmath>
 #include <optional>
@@ -9,7 +10,6 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
-#include <yaml-cpp/yaml.h>
 
 namespace tow_sim
 {

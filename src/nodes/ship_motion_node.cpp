@@ -47,15 +47,17 @@ public:
       throw std::invalid_argument(pnh.resolveName("manoeuvre") + " = '" + manoeuvre_ +
                                   "' must be straight, turn, zigzag, speed_change or waypoints");
     if (manoeuvre_ == "waypoints" && waypoints_.empty())
-      throw std::invalid_argument(pnh.resolveName("waypoints") + " is empty: the waypoints manoeuvre needs at least "
-                                                                 "one [x, y] pair");
+      throw std::invalid_argument(pnh.resolveName("waypoints") +
+                                  " is empty: the waypoints manoeuvre needs at least "
+                                  "one [x, y] pair");
     if (!(std::abs(speed_) <= 15.0 && std::abs(speed_2_) <= 15.0))
       throw std::invalid_argument(pnh.resolveName("speed") + " and speed_2 must be in [-15, 15] [m/s]");
     if (!(std::abs(turn_radius_) >= 10.0 && std::abs(turn_radius_) <= 1e5))
       throw std::invalid_argument(pnh.resolveName("turn_radius") + " must have a magnitude in [10, 1e5] [m]");
     if (!(rate_ >= 1.0 && rate_ <= 1000.0) || !(zigzag_period_ > 0.0) || !(change_duration_ > 0.0))
-      throw std::invalid_argument(pnh.resolveName("rate") + " must be in [1, 1000] [Hz]; zigzag_period and "
-                                                            "change_duration > 0 [s]");
+      throw std::invalid_argument(pnh.resolveName("rate") +
+                                  " must be in [1, 1000] [Hz]; zigzag_period and "
+                                  "change_duration > 0 [s]");
     u_ = speed_;
     odom_pub_ = nh.advertise<nav_msgs::Odometry>("ship/odom", 20);
     cmd_sub_ = nh.subscribe("cmd_vel", 5, &ShipMotion::onCmdVel, this);

@@ -118,8 +118,9 @@ void DepthAutopilotNode::onVehicleOdometry(const nav_msgs::Odometry::ConstPtr& m
     if (have_altitude_ && std::abs(m.t - altitude_stamp_) <= 0.5)
       m.altitude = altitude_ - (-p.z - altitude_depth_);
     else if (autopilot_.altitudeMode())
-      ROS_WARN_THROTTLE(5.0, "depth_autopilot: altitude mode but no recent cable/state with a seabed: holding the "
-                             "last depth setpoint, %.2f m",
+      ROS_WARN_THROTTLE(5.0,
+                        "depth_autopilot: altitude mode but no recent cable/state with a seabed: holding the "
+                        "last depth setpoint, %.2f m",
                         autopilot_.setpoint());
     const bool had_setpoint = autopilot_.hasSetpoint();
     // tow_sim_node repeats a stamp while its simulation holds: ignored quietly; older ones are warned of.

@@ -69,7 +69,8 @@ visualization_msgs::MarkerArray makeMarkers(const Simulator& sim, const Vehicle&
   const double span = 0.8 * params.vehicle_diameter, chord = 0.12 * hull_length;
   const Eigen::Matrix3d R = q_published.toRotationMatrix();
   auto fin = [&](int id, double from_bail, const Eigen::Vector3d& side_B, const Eigen::Quaterniond& deflection,
-                 const Eigen::Vector3d& size) {
+                 const Eigen::Vector3d& size)
+  {
     Marker m = baseMarker(header, "vehicle", id, Marker::CUBE);
     const Eigen::Vector3d root = k.pointAt(from_bail / vp.tail_from_bail);
     m.pose.position = ros_conv::toPoint(root + R * ((0.5 * params.vehicle_diameter + 0.5 * span) * side_B));
@@ -131,7 +132,8 @@ visualization_msgs::MarkerArray makeMarkers(const Simulator& sim, const Vehicle&
     bottom.color.b = 0.5;
     bottom.color.a = 1.0;
     const double step = 40.0, half = 400.0;
-    const double x0 = std::round(out.p_cg_W.x() / step) * step - half, y0 = std::round(out.p_cg_W.y() / step) * step - half;
+    const double x0 = std::round(out.p_cg_W.x() / step) * step - half,
+                 y0 = std::round(out.p_cg_W.y() / step) * step - half;
     auto at = [&](double x, double y) { return ros_conv::toPoint(Eigen::Vector3d(x, y, seabed->bottomZ(x, y))); };
     for (double a = 0.0; a <= 2 * half + 1e-9; a += step)
       for (double b = 0.0; b < 2 * half - 1e-9; b += step)

@@ -18,8 +18,8 @@ namespace tow_sim
 {
 namespace
 {
-constexpr size_t kRestartBurst = 5;      // restarts after divergence ...
-constexpr double kRestartWindow = 10.0;  // [s] of wall time within which they mean the numerics cannot work
+constexpr size_t kRestartBurst = 5;        // restarts after divergence ...
+constexpr double kRestartWindow = 10.0;    // [s] of wall time within which they mean the numerics cannot work
 constexpr size_t kTrackCapacity = 100000;  // ship odometry samples at most (pruned by time as it is used)
 
 // Runs f; an exception is reported (throttled) instead of leaving a ROS callback, which would end the node.
@@ -74,14 +74,16 @@ NodeParams readNodeParams(const ros::NodeHandle& pnh)
   p.world_frame = readString(pnh, "world_frame", p.world_frame);
   p.vehicle_frame = readString(pnh, "vehicle_frame", p.vehicle_frame);
   if (p.world_frame.empty() || p.vehicle_frame.empty() || p.world_frame == p.vehicle_frame)
-    throw std::invalid_argument(pnh.resolveName("vehicle_frame") + ": world_frame and vehicle_frame must be "
-                                                                     "non-empty and different");
+    throw std::invalid_argument(pnh.resolveName("vehicle_frame") +
+                                ": world_frame and vehicle_frame must be "
+                                "non-empty and different");
   std::vector<double> tow;
   if (pnh.hasParam("tow_point"))
   {
     if (!pnh.getParam("tow_point", tow) || tow.size() != 3)
-      throw std::invalid_argument(pnh.resolveName("tow_point") + ": must be a list of 3 numbers [x, y, z] [m] in "
-                                                                  "the ship frame");
+      throw std::invalid_argument(pnh.resolveName("tow_point") +
+                                  ": must be a list of 3 numbers [x, y, z] [m] in "
+                                  "the ship frame");
     for (int i = 0; i < 3; ++i)
       requireInRange(pnh.resolveName("tow_point") + "[" + std::to_string(i) + "]", tow[i], -1000.0, 1000.0, "[m]");
     p.tow_point_S = Eigen::Vector3d(tow[0], tow[1], tow[2]);
@@ -125,8 +127,11 @@ SimulationConfig readConfig(const ros::NodeHandle& pnh)
 }  // namespace
 
 TowSimNode::TowSimNode(ros::NodeHandle nh, ros::NodeHandle pnh)
-  : nh_(nh), pnh_(pnh), params_(readNodeParams(pnh)), config_(readConfig(pnh)),
-    track_(params_.max_extrapolation, kTrackCapacity)
+    : nh_(nh),
+      pnh_(pnh),
+      params_(readNodeParams(pnh)),
+      config_(readConfig(pnh)),
+      track_(params_.max_extrapolation, kTrackCapacity)
 {
   odometry_limits_.world_frame = params_.world_frame;
   odometry_limits_.tow_point_S = params_.tow_point_S;
@@ -150,19 +155,15 @@ TowSimNode::TowSimNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   fin_loads_pub_ = nh_.advertise<tow_sim::FinLoads>("vehicle/fin_loads", 10);
   reset_srv_ = pnh_.advertiseService("reset", &TowSimNode::onReset, this);
   pause_srv_ = pnh_.advertiseService("set_paused", &TowSimNode::onSetPaused, this);
-  physics_timer_ = nh_.createTimer(ros::Duration(1.0 / params_.physics_rate), [this](const ros::TimerEvent& e) {
-    guarded("physics tick", [&] { physicsTick(e); });
-  });
-  publish_timer_ = nh_.createTimer(ros::Duration(1.0 / params_.publish_rate), [this](const ros::TimerEvent& e) {
-    guarded("publishing", [&] { publishTick(e); });
-  });
+  physics_timer_ = nh_.createTimer(ros::Duration(1.0 / params_.physics_rate), [this](const ros::TimerEvent& e)
+                                   { guarded("physics tick", [&] { physicsTick(e); }); });
+  publish_timer_ = nh_.createTimer(ros::Duration(1.0 / params_.publish_rate), [this](const ros::TimerEvent& e)
+                                   { guarded("publishing", [&] { publishTick(e); }); });
   if (params_.print_status)
-    status_timer_ = nh_.createTimer(ros::Duration(1.0), [this](const ros::TimerEvent&) {
-      guarded("status line", [this] { printStatus(); });
-    });
-  ROS_INFO("tow_sim: %.0f m cable in %d segments, %.0f kg vehicle; waiting for %s in frame '%s'",
-           config_.cable.length, config_.cable.segments, config_.vehicle.mass, odom_sub_.getTopic().c_str(),
-           params_.world_frame.c_str());
+    status_timer_ = nh_.createTimer(
+        ros::Duration(1.0), [this](const ros::TimerEvent&) { guarded("status line", [this] { printStatus(); }); });
+  ROS_INFO("tow_sim: %.0f m cable in %d segments, %.0f kg vehicle; waiting for %s in frame '%s'", config_.cable.length,
+           config_.cable.segments, config_.vehicle.mass, odom_sub_.getTopic().c_str(), params_.world_frame.c_str());
 }
 
 template <class M>
@@ -170,10 +171,11 @@ ros::Subscriber TowSimNode::subscribe(const std::string& topic, uint32_t queue,
                                       void (TowSimNode::*callback)(const typename M::ConstPtr&))
 {
   const boost::function<void(const typename M::ConstPtr&)> guarded_callback =
-      [this, callback, topic](const typename M::ConstPtr& msg) {
-        if (!guarded(topic.c_str(), [&] { (this->*callback)(msg); }))
-          ++rejected_messages_;  // the message is dropped
-      };
+      [this, callback, topic](const typename M::ConstPtr& msg)
+  {
+    if (!guarded(topic.c_str(), [&] { (this->*callback)(msg); }))
+      ++rejected_messages_;  // the message is dropped
+  };
   return nh_.subscribe<M>(topic, queue, guarded_callback);
 }
 
@@ -195,10 +197,11 @@ void TowSimNode::printStatus()
   const VehicleOutputs o =
       vehicle_->outputs(sim_->time(), sim_->elementKinematics(model_->segments()), model_->environment());
   const Diversion d = lateralDiversion(o.p_cg_W, o.v_cg_W, sim_->shipEnd(), track_direction_);
-  ROS_INFO("t %7.1f s | ship %4.2f m/s | vehicle depth %6.1f m, diversion %6.2f m | tension ship %7.0f N, "
-           "vehicle %6.0f N",
-           sim_->time(), sim_->shipEnd().v_W.norm(), o.depth, d.offset, sim_->tensions().col(0).norm(),
-           sim_->tensions().col(model_->segments()).norm());
+  ROS_INFO(
+      "t %7.1f s | ship %4.2f m/s | vehicle depth %6.1f m, diversion %6.2f m | tension ship %7.0f N, "
+      "vehicle %6.0f N",
+      sim_->time(), sim_->shipEnd().v_W.norm(), o.depth, d.offset, sim_->tensions().col(0).norm(),
+      sim_->tensions().col(model_->segments()).norm());
 }
 
 void TowSimNode::start(double t)
@@ -209,10 +212,12 @@ void TowSimNode::start(double t)
   if (params_.initial_shape != "hanging")
     direction = -std::cos(params_.initial_angle) * heading - std::sin(params_.initial_angle) * Eigen::Vector3d::UnitZ();
   if (!sim_)
-    sim_ = std::make_unique<Simulator>(model_, [this](double time) { return track_(time); }, config_.winch);
+    sim_ = std::make_unique<Simulator>(
+        model_, [this](double time) { return track_(time); }, config_.winch);
   vehicle_->resetActuators(t);
   // The initial shapes know nothing of the seabed: joints below it are raised onto it.
-  auto lift = [this](ChainState state) {
+  auto lift = [this](ChainState state)
+  {
     if (seabed_)
       liftAboveSeabed(*seabed_, state);
     return state;
@@ -286,8 +291,9 @@ void TowSimNode::onFinCommand(const tow_sim::FinCommand::ConstPtr& msg)
     return;
   }
   if (vehicle_->command(sim_->time(), msg->rudder, msg->elevator, msg->thrust))
-    ROS_WARN_THROTTLE(2.0, "tow_sim: fins/command saturated: |rudder| <= %.3f rad, |elevator| <= %.3f rad, |thrust| "
-                           "<= %.0f N",
+    ROS_WARN_THROTTLE(2.0,
+                      "tow_sim: fins/command saturated: |rudder| <= %.3f rad, |elevator| <= %.3f rad, |thrust| "
+                      "<= %.0f N",
                       config_.vehicle.rudder.max_deflection, config_.vehicle.elevator.max_deflection,
                       config_.vehicle.max_thrust);
 }
@@ -314,7 +320,8 @@ void TowSimNode::onCurrent(const geometry_msgs::Vector3Stamped::ConstPtr& msg)
 
 void TowSimNode::onCurrentProfile(const tow_sim::CurrentProfile::ConstPtr& msg)
 {
-  auto reject = [this](const std::string& why) {
+  auto reject = [this](const std::string& why)
+  {
     ++rejected_messages_;
     ROS_WARN_THROTTLE(2.0, "tow_sim: rejected current_profile: %s", why.c_str());
   };
@@ -398,9 +405,10 @@ void TowSimNode::physicsTick(const ros::TimerEvent&)
   if (sim_->time() < track_.oldestTime())
   {
     // Only after more than kTrackCapacity odometry messages without a physics tick (a very long pause).
-    ROS_WARN("tow_sim: the simulation (t = %.1f s) is older than the ship odometry kept (from %.1f s): laying the "
-             "cable out again at the newest odometry",
-             sim_->time(), track_.oldestTime());
+    ROS_WARN(
+        "tow_sim: the simulation (t = %.1f s) is older than the ship odometry kept (from %.1f s): laying the "
+        "cable out again at the newest odometry",
+        sim_->time(), track_.oldestTime());
     start(track_.newestTime());
     return;
   }
@@ -444,9 +452,10 @@ void TowSimNode::restartAfterDivergence(const std::string& why)
   {
     // Restarting again would only diverge again: hold the last good state, say so, wait for ~reset.
     diverging_ = true;
-    ROS_ERROR("tow_sim: %s; %zu restarts within %.0f s: holding the last good state until ~reset (the numerics "
-              "cannot follow this configuration: check numerics.stepper, fixed_step, max_step, cable.segments)",
-              why.c_str(), kRestartBurst, kRestartWindow);
+    ROS_ERROR(
+        "tow_sim: %s; %zu restarts within %.0f s: holding the last good state until ~reset (the numerics "
+        "cannot follow this configuration: check numerics.stepper, fixed_step, max_step, cable.segments)",
+        why.c_str(), kRestartBurst, kRestartWindow);
     return;
   }
   ROS_ERROR_THROTTLE(5.0, "tow_sim: %s; restarting from the initial shape at the current ship pose (%llu restarts)",

@@ -3,6 +3,7 @@
 // plot command makes non-empty PNGs; the ship path follows its manoeuvres.
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -11,7 +12,6 @@
 #include <map>
 #include <sstream>
 #include <string>
-#include <sys/stat.h>
 #include <vector>
 
 #include "tow_sim/core/scenario.h"
@@ -62,7 +62,8 @@ long fileSize(const std::string& path)
 // A fresh folder for this test process's outputs, so no test reads files an earlier run left behind.
 const std::string& outputRoot()
 {
-  static const std::string root = [] {
+  static const std::string root = []
+  {
     char pattern[] = "/tmp/tow_sim_test_batch_XXXXXX";
     const char* made = mkdtemp(pattern);
     return std::string(made ? made : "");
@@ -102,12 +103,32 @@ std::vector<std::vector<std::string>> timeseries(const std::string& name)
 
 TEST(Batch, EveryScenarioRunsAndWritesTheDocumentedColumns)
 {
-  const std::vector<std::string> columns = { "t", "ship_x", "ship_y", "ship_z", "ship_speed", "vehicle_x",
-                                             "vehicle_y", "vehicle_z", "vehicle_roll", "vehicle_pitch",
-                                             "vehicle_yaw", "depth", "layback", "diversion", "diversion_rate",
-                                             "tension_ship", "tension_vehicle", "rudder", "elevator", "thrust",
-                                             "max_length_error", "cable_length", "payout_rate",
-                                             "vehicle_altitude", "seabed_contacts", "depth_setpoint" };
+  const std::vector<std::string> columns = { "t",
+                                             "ship_x",
+                                             "ship_y",
+                                             "ship_z",
+                                             "ship_speed",
+                                             "vehicle_x",
+                                             "vehicle_y",
+                                             "vehicle_z",
+                                             "vehicle_roll",
+                                             "vehicle_pitch",
+                                             "vehicle_yaw",
+                                             "depth",
+                                             "layback",
+                                             "diversion",
+                                             "diversion_rate",
+                                             "tension_ship",
+                                             "tension_vehicle",
+                                             "rudder",
+                                             "elevator",
+                                             "thrust",
+                                             "max_length_error",
+                                             "cable_length",
+                                             "payout_rate",
+                                             "vehicle_altitude",
+                                             "seabed_contacts",
+                                             "depth_setpoint" };
   for (const std::string name : { "report_elevator_step", "turn_180", "speed_change", "zigzag", "winch_payout",
                                   "seabed_shoal", "sheared_current", "autopilot_depth_turn", "autopilot_terrain" })
   {
@@ -153,7 +174,8 @@ TEST(Batch, EveryScenarioRunsAndWritesTheDocumentedColumns)
     EXPECT_EQ(again.duration, sc.duration);
     EXPECT_EQ(again.manoeuvres.size(), sc.manoeuvres.size());
     // Plots.
-    const std::string plot_log = run(std::string("/usr/bin/python3 ") + TOW_SIM_SOURCE_DIR + "/scripts/tow_sim_plot " + out, &status);
+    const std::string plot_log =
+        run(std::string("/usr/bin/python3 ") + TOW_SIM_SOURCE_DIR + "/scripts/tow_sim_plot " + out, &status);
     ASSERT_EQ(status, 0) << plot_log;
     for (const char* png : { "depth_diversion.png", "tensions.png", "plan_view.png", "side_view.png" })
       EXPECT_GT(fileSize(out + "/" + png), 5000) << name << " " << png;
@@ -171,9 +193,11 @@ TEST(Batch, ReportsScenarioEffectsWithTheRightSense)
   for (const char* name : { "report_elevator_step", "speed_change", "turn_180", "winch_payout", "seabed_shoal",
                             "sheared_current", "autopilot_depth_turn", "autopilot_terrain" })
     ASSERT_GT(timeseries(name).size(), 100u) << name;
-  auto column = [](const std::string& name, int c, int row) {
+  auto column = [](const std::string& name, int c, int row)
+  {
     const auto rows = timeseries(name);
-    return std::stod(rows[static_cast<size_t>(row < 0 ? static_cast<int>(rows.size()) + row : row)][static_cast<size_t>(c)]);
+    return std::stod(
+        rows[static_cast<size_t>(row < 0 ? static_cast<int>(rows.size()) + row : row)][static_cast<size_t>(c)]);
   };
   EXPECT_LT(column("report_elevator_step", 11, -1), column("report_elevator_step", 11, 60) - 0.2);
   EXPECT_GT(column("speed_change", 11, -1), column("speed_change", 11, 50) + 20.0);
@@ -205,9 +229,10 @@ TEST(Batch, ReportsScenarioEffectsWithTheRightSense)
     lowest = std::min(lowest, std::stod(ridge[r][23]));
     highest = std::max(highest, std::stod(ridge[r][23]));
   }
-  std::printf("autopilot offline: depth error from 60 s after the step through the turn <= %.2f m; altitude over "
-              "the ridge %.2f .. %.2f m (setpoint 25 m)\n",
-              worst, lowest, highest);
+  std::printf(
+      "autopilot offline: depth error from 60 s after the step through the turn <= %.2f m; altitude over "
+      "the ridge %.2f .. %.2f m (setpoint 25 m)\n",
+      worst, lowest, highest);
   EXPECT_LT(worst, 1.0);
   EXPECT_GT(lowest, 22.0);
   EXPECT_LT(highest, 28.0);
@@ -242,8 +267,8 @@ double largestScaledDifference(const std::vector<std::vector<std::string>>& actu
     for (size_t c = 0; c < columns; ++c)
     {
       const std::string &a = actual[r][c], &e = expected[r][c];
-      const double difference =
-          a.empty() || e.empty() ? (a.empty() == e.empty() ? 0.0 : INFINITY) : std::abs(std::stod(a) - std::stod(e)) / scale[c];
+      const double difference = a.empty() || e.empty() ? (a.empty() == e.empty() ? 0.0 : INFINITY)
+                                                       : std::abs(std::stod(a) - std::stod(e)) / scale[c];
       if (difference > worst)
       {
         worst = difference;
@@ -278,10 +303,12 @@ TEST(Batch, BadScenariosAreRefusedNamingTheKey)
 {
   ASSERT_FALSE(outputRoot().empty()) << "cannot make a temporary folder";
   const std::string path = outputRoot() + "/bad_scenario.yaml";
-  auto refuse = [&](const std::string& yaml, const std::string& needle) {
+  auto refuse = [&](const std::string& yaml, const std::string& needle)
+  {
     std::ofstream(path) << yaml;
     int status = 0;
-    const std::string log = run(std::string(TOW_SIM_BATCH_BINARY) + " --scenario " + path + " --out " + outputRoot() + "/bad", &status);
+    const std::string log =
+        run(std::string(TOW_SIM_BATCH_BINARY) + " --scenario " + path + " --out " + outputRoot() + "/bad", &status);
     EXPECT_EQ(status, 2) << yaml;
     EXPECT_NE(log.find(needle), std::string::npos) << log;
   };
@@ -294,7 +321,8 @@ TEST(Batch, BadScenariosAreRefusedNamingTheKey)
   refuse("initial_state: {type: points, points: [1, 2, 3]}", "initial_state.points: must hold");
   refuse("commands: [{t: 5, payout_rate: 1}]", "commands[0].payout_rate: needs the winch");
   refuse("winch: {enabled: true, max_length: 100}", "cable.length = 500 is out of range");
-  refuse("seabed: {type: grid, grid_file: no_such_grid.yaml}", "seabed.grid_file: " + outputRoot() + "/no_such_grid.yaml");
+  refuse("seabed: {type: grid, grid_file: no_such_grid.yaml}",
+         "seabed.grid_file: " + outputRoot() + "/no_such_grid.yaml");
   refuse("seabed: {type: flat, depth: -3}", "seabed.depth = -3");
   refuse("environment: {current_profile: [{depth: 50}, {depth: 20}]}", "current_profile[1].depth = 20");
   refuse("autopilot: {kp: -1}", "autopilot.kp = -1");

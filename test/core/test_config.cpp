@@ -189,8 +189,9 @@ TEST(Config, ErrorsNameTheFullKeyPathTheValueAndTheRange)
   EXPECT_NE(e.find("environment.water_density = nan"), std::string::npos) << e;
   e = errorOf("vehicle: {added_mass: {approach: B, matrix: [1, 2, 3]}}");
   EXPECT_NE(e.find("vehicle.added_mass.matrix: must hold 36 numbers"), std::string::npos) << e;
-  e = errorOf("vehicle: {added_mass: {approach: B, matrix: [1, 0, 0, 0, 0, 0,  -1, 0, 0, 0, 0,  1, 0, 0, 0,  1, 0, "
-              "0,  1, 0,  1]}}");
+  e = errorOf(
+      "vehicle: {added_mass: {approach: B, matrix: [1, 0, 0, 0, 0, 0,  -1, 0, 0, 0, 0,  1, 0, 0, 0,  1, 0, "
+      "0,  1, 0,  1]}}");
   EXPECT_NE(e.find("vehicle.added_mass.matrix is not positive semi-definite"), std::string::npos) << e;
   e = errorOf("vehicle: {inertia: {xx: -1}}");
   EXPECT_NE(e.find("vehicle.inertia"), std::string::npos) << e;

@@ -26,12 +26,13 @@ TEST(CurrentProfile, InterpolatesLinearlyAndHoldsItsEndValues)
 {
   Environment env;
   env.current_W = Eigen::Vector3d(0.1, 0.0, 0.0);
-  env.current_profile = profile({ { 10.0, Eigen::Vector3d(0.0, 1.0, 0.0) }, { 30.0, Eigen::Vector3d(0.0, 3.0, 0.0) },
+  env.current_profile = profile({ { 10.0, Eigen::Vector3d(0.0, 1.0, 0.0) },
+                                  { 30.0, Eigen::Vector3d(0.0, 3.0, 0.0) },
                                   { 50.0, Eigen::Vector3d(2.0, 3.0, 0.0) } });
   validate(env);
   auto at_depth = [&](double depth) { return env.currentAt(-depth); };
-  EXPECT_TRUE(at_depth(0.0).isApprox(Eigen::Vector3d(0.1, 1.0, 0.0)));    // above the first sample
-  EXPECT_TRUE(at_depth(20.0).isApprox(Eigen::Vector3d(0.1, 2.0, 0.0)));   // halfway
+  EXPECT_TRUE(at_depth(0.0).isApprox(Eigen::Vector3d(0.1, 1.0, 0.0)));   // above the first sample
+  EXPECT_TRUE(at_depth(20.0).isApprox(Eigen::Vector3d(0.1, 2.0, 0.0)));  // halfway
   EXPECT_TRUE(at_depth(40.0).isApprox(Eigen::Vector3d(1.1, 3.0, 0.0)));
   EXPECT_TRUE(at_depth(45.0).isApprox(Eigen::Vector3d(1.6, 3.0, 0.0)));
   EXPECT_TRUE(at_depth(500.0).isApprox(Eigen::Vector3d(2.1, 3.0, 0.0)));  // below the last
@@ -86,8 +87,8 @@ TEST(CurrentProfile, UniformProfileIsGalilean)
 {
   const Eigen::Vector3d u(1.5, 0.4, 0.0), down_astern(-1.0, -0.2, -0.6);
   Tow moving_ship = makeTow(u, Eigen::Vector3d::Zero(), {});
-  Tow moving_water = makeTow(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
-                             profile({ { 0.0, -u }, { 50.0, -u }, { 3000.0, -u } }));
+  Tow moving_water =
+      makeTow(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), profile({ { 0.0, -u }, { 50.0, -u }, { 3000.0, -u } }));
   for (Tow* tow : { &moving_ship, &moving_water })
   {
     const Eigen::Vector3d v = tow == &moving_ship ? u : Eigen::Vector3d::Zero();
@@ -99,7 +100,7 @@ TEST(CurrentProfile, UniformProfileIsGalilean)
   const double gap = (a - b).cwiseAbs().maxCoeff();
   const double tension_gap = (moving_ship.sim->tensions() - moving_water.sim->tensions()).cwiseAbs().maxCoeff();
   std::printf("uniform profile vs moving ship after 60 s: joints %.2e m, tensions %.2e N\n", gap, tension_gap);
-  EXPECT_LT(gap, 1e-6);  // [m], measured 2.7e-8
+  EXPECT_LT(gap, 1e-6);                                                              // [m], measured 2.7e-8
   EXPECT_LT(tension_gap, 1e-7 * moving_ship.sim->tensions().cwiseAbs().maxCoeff());  // measured 6e-9 relative
   // The cable did move: the comparison is not of two copies of the start.
   const Eigen::Matrix3Xd start = straightChain(*moving_ship.model, Eigen::Vector3d::Zero(), down_astern, u).x;
@@ -129,10 +130,11 @@ TEST(CurrentProfile, ShearCarriesTheDeeperCableFartherDownstream)
 
   const int n = static_cast<int>(joints.cols());
   const double vehicle_offset = joints(1, n - 1);
-  std::printf("sheared cross-current: vehicle at depth %.1f m, %.2f m to port (uniform 0.5 m/s: %.2f m, none: "
-              "%.2f m); dynamics vs equilibrium %.2e m\n",
-              -joints(2, n - 1), vehicle_offset, eq_deep.state.x(1, n - 2), eq_none.state.x(1, n - 2), gap);
-  EXPECT_LT(gap, 1e-4);  // [m], measured 2.1e-5
+  std::printf(
+      "sheared cross-current: vehicle at depth %.1f m, %.2f m to port (uniform 0.5 m/s: %.2f m, none: "
+      "%.2f m); dynamics vs equilibrium %.2e m\n",
+      -joints(2, n - 1), vehicle_offset, eq_deep.state.x(1, n - 2), eq_none.state.x(1, n - 2), gap);
+  EXPECT_LT(gap, 1e-4);                     // [m], measured 2.1e-5
   EXPECT_NEAR(vehicle_offset, 23.96, 0.1);  // regression of the documented 24.0 m
   // Downstream (north = +y) and farther the deeper: y grows monotonically along the cable.
   for (int j = 1; j < n; ++j)

@@ -225,7 +225,7 @@ TEST(DepthAutopilot, StaleOdometryCentresTheFins)
   EXPECT_EQ(stale.rudder, 0.0);
   EXPECT_EQ(stale.thrust, 0.0);
   EXPECT_FALSE(ap.addVehicle(at(5.0, 30.0)));  // not after the previous stamp
-  EXPECT_TRUE(ap.addVehicle(at(7.0, 10.5)));  // 0.5 m deep of the setpoint: the output is not saturated
+  EXPECT_TRUE(ap.addVehicle(at(7.0, 10.5)));   // 0.5 m deep of the setpoint: the output is not saturated
   const AutopilotCommand back = ap.update(7.0);
   EXPECT_EQ(back.status, AutopilotCommand::Status::kActive);
   EXPECT_EQ(back.thrust, 50.0);

@@ -82,8 +82,8 @@ TEST(Equilibrium, FreeCableLiesAtTheCriticalAngle)
   auto model = test::makeModel(cable, test::endLikeSegment(cable), env);
   const double speed = 2.0;
   const EquilibriumResult eq = steadyTowEquilibrium(*model, 0.0, Eigen::Vector3d::Zero(), Eigen::Vector3d(speed, 0, 0));
-  const double w = (cable.mass_per_length - env.water_density * kPi * 0.25 * cable.diameter * cable.diameter) *
-                   env.gravity;
+  const double w =
+      (cable.mass_per_length - env.water_density * kPi * 0.25 * cable.diameter * cable.diameter) * env.gravity;
   const double c2u2 = 0.5 * env.water_density * cable.normal_drag_coefficient * cable.diameter * speed * speed;
   const double phi_c = std::acos((-w + std::sqrt(w * w + 4.0 * c2u2 * c2u2)) / (2.0 * c2u2));
   const Eigen::Vector3d s = eq.state.x.col(25) - eq.state.x.col(24);
@@ -104,8 +104,8 @@ TEST(Equilibrium, ConvergesOrFailsClearlyOverSpeedsAndCurrents)
       auto model = vehicleModel(300.0, 60, 0.5 * Eigen::Vector3d(std::cos(a), std::sin(a), 0.0));
       try
       {
-        const EquilibriumResult eq = steadyTowEquilibrium(*model, 0.0, Eigen::Vector3d::Zero(),
-                                                          Eigen::Vector3d(speed, 0.0, 0.0));
+        const EquilibriumResult eq =
+            steadyTowEquilibrium(*model, 0.0, Eigen::Vector3d::Zero(), Eigen::Vector3d(speed, 0.0, 0.0));
         EXPECT_TRUE(eq.state.x.allFinite() && eq.tensions.allFinite());
         // The cable hangs below the tow point and the ship pulls.
         EXPECT_LT(eq.state.x.row(2).maxCoeff(), 0.0);
@@ -119,8 +119,8 @@ TEST(Equilibrium, ConvergesOrFailsClearlyOverSpeedsAndCurrents)
       }
     }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::printf("equilibrium over 5 speeds x 8 current directions: %d converged, %d failed cleanly, %.2f s\n",
-              converged, failed, seconds);
+  std::printf("equilibrium over 5 speeds x 8 current directions: %d converged, %d failed cleanly, %.2f s\n", converged,
+              failed, seconds);
   EXPECT_EQ(converged, 40);
   // Hanging at rest in still water: straight down, carrying the weight in water.
   auto still = vehicleModel(300.0, 60, Eigen::Vector3d::Zero());

@@ -136,9 +136,10 @@ simulation: {duration: 240}
       slack_while_towing += count;
   }
   const Eigen::Matrix3Xd joints = sim.jointPositions();
-  std::printf("ship reversing: vehicle %.1f m ahead of the tow point after 240 s; %d slack joint samples (%d while "
-              "still towing ahead)\n",
-              joints(0, joints.cols() - 1) - joints(0, 0), slack_samples, slack_while_towing);
+  std::printf(
+      "ship reversing: vehicle %.1f m ahead of the tow point after 240 s; %d slack joint samples (%d while "
+      "still towing ahead)\n",
+      joints(0, joints.cols() - 1) - joints(0, 0), slack_samples, slack_while_towing);
   EXPECT_LT(sim.lengthError(), 1e-9);
   // Backing onto its own cable the ship pushes it: the rigid links carry compression, and the slack flags
   // (what cable/state.slack publishes) say so; towing ahead, none is slack.
@@ -152,14 +153,16 @@ simulation: {duration: 240}
 TEST(HardRegimes, OdometryAtOneAndTwoHundredHertz)
 {
   const double speed = 2.0, radius = 150.0, w = speed / radius;
-  auto exact = [=](double t) {
+  auto exact = [=](double t)
+  {
     ShipEndState s;
     s.p_W = radius * Eigen::Vector3d(std::sin(w * t), 1.0 - std::cos(w * t), 0.0);
     s.v_W = speed * Eigen::Vector3d(std::cos(w * t), std::sin(w * t), 0.0);
     s.a_W = speed * w * Eigen::Vector3d(-std::sin(w * t), std::cos(w * t), 0.0);
     return s;
   };
-  auto vehicleAfter = [&](const ShipMotion& ship) {
+  auto vehicleAfter = [&](const ShipMotion& ship)
+  {
     const Tow tow = makeTow(200.0, 40);
     Simulator sim(tow.model, ship);
     sim.reset(0.0, steadyTowEquilibrium(*tow.model, 0.0, ship(0.0).p_W, ship(0.0).v_W).state);

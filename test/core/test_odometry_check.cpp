@@ -41,7 +41,8 @@ TEST(OdometryCheck, RefusesEachKindOfBadMessage)
   OdometryResult first = checkOdometry(good(1.0), limits, track, 1.0);
   ASSERT_TRUE(first.accepted);
   track.add(1.0, first.tow_p_W, first.tow_v_W);
-  auto refused = [&](OdometryInput in, const std::string& needle) {
+  auto refused = [&](OdometryInput in, const std::string& needle)
+  {
     const OdometryResult r = checkOdometry(in, limits, track, 2.0);
     EXPECT_FALSE(r.accepted) << needle;
     EXPECT_NE(r.reason.find(needle), std::string::npos) << r.reason;

@@ -41,8 +41,8 @@ TEST(Vacuum, ReleasedChainKeepsItsEnergy)
   Simulator sim(model, fixed);
   // Released from a straight line 30 degrees below the horizontal, with a sideways push at the end
   // so that the motion is fully three-dimensional.
-  ChainState start = straightChain(*model, Eigen::Vector3d::Zero(), Eigen::Vector3d(1.0, 0.0, -0.577),
-                                   Eigen::Vector3d::Zero());
+  ChainState start =
+      straightChain(*model, Eigen::Vector3d::Zero(), Eigen::Vector3d(1.0, 0.0, -0.577), Eigen::Vector3d::Zero());
   const int n = model->jointCount();
   for (int j = 0; j < n; ++j)
     start.v.col(j) = Eigen::Vector3d(0.0, 0.3 * j / n, 0.0);
@@ -78,7 +78,8 @@ TEST(Vacuum, HangingChainFrequenciesMatchBessel)
   const double total_length = n * d;
   const ShipEndState ship;
 
-  auto angularAccelerations = [&](const Eigen::VectorXd& theta) {
+  auto angularAccelerations = [&](const Eigen::VectorXd& theta)
+  {
     Eigen::Matrix3Xd x(3, n), v = Eigen::Matrix3Xd::Zero(3, n), a(3, n);
     Eigen::Vector3d p = ship.p_W;
     for (int e = 0; e < n; ++e)

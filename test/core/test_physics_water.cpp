@@ -33,7 +33,7 @@ TEST(Water, TowedCableLiesAtTheCriticalAngle)
   cable.diameter = 0.02;
   cable.mass_per_length = 1.0;
   cable.normal_drag_coefficient = 1.2;
-  cable.tangential_drag_coefficient = 0.0;  // the closed form has no tangential drag
+  cable.tangential_drag_coefficient = 0.0;                   // the closed form has no tangential drag
   const EndElementParams end = test::endLikeSegment(cable);  // a free cable end
   const Environment env;
   auto model = test::makeModel(cable, end, env);
@@ -44,8 +44,8 @@ TEST(Water, TowedCableLiesAtTheCriticalAngle)
   sim.advanceTo(600.0);
 
   // (w - b) cos(phi) = C2 U^2 sin^2(phi): a quadratic in cos(phi).
-  const double net_weight = (cable.mass_per_length - env.water_density * kPi * 0.25 * cable.diameter *
-                                                         cable.diameter) * env.gravity;  // [N/m]
+  const double net_weight = (cable.mass_per_length - env.water_density * kPi * 0.25 * cable.diameter * cable.diameter) *
+                            env.gravity;  // [N/m]
   const double drag = 0.5 * env.water_density * cable.normal_drag_coefficient * cable.diameter * speed * speed;
   const double cos_phi = (-net_weight + std::sqrt(net_weight * net_weight + 4.0 * drag * drag)) / (2.0 * drag);
   const double phi_c = std::acos(cos_phi);
@@ -74,8 +74,8 @@ TEST(Water, HangingChainCarriesTheWeightInWaterBelowEachJoint)
   const Environment env;
   auto model = test::makeModel(cable, end, env);
   Simulator sim(model, constantVelocityShip(Eigen::Vector3d(3.0, -2.0, 0.0), Eigen::Vector3d::Zero()));
-  sim.reset(0.0, straightChain(*model, Eigen::Vector3d(3.0, -2.0, 0.0), -Eigen::Vector3d::UnitZ(),
-                               Eigen::Vector3d::Zero()));
+  sim.reset(0.0,
+            straightChain(*model, Eigen::Vector3d(3.0, -2.0, 0.0), -Eigen::Vector3d::UnitZ(), Eigen::Vector3d::Zero()));
 
   const double area = 0.25 * kPi * cable.diameter * cable.diameter;
   const double segment_weight =
@@ -234,8 +234,7 @@ TEST(Water, SegmentLengthsHoldThroughAThousandSecondsOfTurns)
       worst = std::max(worst, std::abs(length / model->elementLength(e) - 1.0));
     }
   }
-  std::printf("largest relative length error: %.3g after projection, %.3g before\n", worst,
-              worst_before_projection);
+  std::printf("largest relative length error: %.3g after projection, %.3g before\n", worst, worst_before_projection);
   EXPECT_LT(worst, 1e-9);
   EXPECT_LT(worst_before_projection, 1e-5);
   // The vehicle followed the ship round the turns: it ended up well to port of its start.

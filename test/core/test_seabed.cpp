@@ -117,9 +117,10 @@ TEST(Seabed, CableLaidOnTheBottomAtRestHasNoTensionGradientWhereItLies)
   }
   for (int e = 1; e < 18; ++e)  // hanging segments
     worst_hanging = std::max(worst_hanging, std::abs((T(e - 1) - T(e)) / d - w));
-  std::printf("laid cable: w = %.3f N/m; %d lying joints: |dT/ds| <= %.2e N/m, sink-in w/k = %.3e m (off by at most "
-              "%.1e m); hanging part dT/ds off w by at most %.2e N/m; tension at the ship %.1f N\n",
-              w, lying, worst_lying_gradient, w / sp.stiffness, worst_sink, worst_hanging, T(0));
+  std::printf(
+      "laid cable: w = %.3f N/m; %d lying joints: |dT/ds| <= %.2e N/m, sink-in w/k = %.3e m (off by at most "
+      "%.1e m); hanging part dT/ds off w by at most %.2e N/m; tension at the ship %.1f N\n",
+      w, lying, worst_lying_gradient, w / sp.stiffness, worst_sink, worst_hanging, T(0));
   EXPECT_LT(worst_lying_gradient, 1e-3 * w);
   EXPECT_LT(worst_hanging, 1e-3 * w);
   EXPECT_LT(worst_sink, 0.01 * w / sp.stiffness);
@@ -169,17 +170,18 @@ TEST(Seabed, VehicleTowedIntoARisingSlopeIsLiftedNotPushedThrough)
   }
   const ElementKinematics k = sim.elementKinematics(model->segments());
   const Eigen::Vector3d cg = k.pointAt(VehicleParams().cg_from_bail / VehicleParams().tail_from_bail);
-  std::printf("slope: vehicle from %.1f m deep (bottom 125 m) to %.1f m at x = %.0f m (bottom %.1f m); lowest hull "
-              "end %.3f m, lowest joint %.3f m above the bottom; on the plateau (%d s) the lower hull end at %.4f .. "
-              "%.4f m\n",
-              start_depth, -cg.z(), cg.x(), -bottom.bottomZ(cg.x(), cg.y()), lowest_hull, lowest_joint,
-              plateau_samples, plateau_low, plateau_high);
-  EXPECT_GT(cg.x(), 1000.0);                     // past the slope, on the 70 m plateau
-  EXPECT_LT(-cg.z(), 70.1);                      // lifted onto it (riding on its hull ends)
+  std::printf(
+      "slope: vehicle from %.1f m deep (bottom 125 m) to %.1f m at x = %.0f m (bottom %.1f m); lowest hull "
+      "end %.3f m, lowest joint %.3f m above the bottom; on the plateau (%d s) the lower hull end at %.4f .. "
+      "%.4f m\n",
+      start_depth, -cg.z(), cg.x(), -bottom.bottomZ(cg.x(), cg.y()), lowest_hull, lowest_joint, plateau_samples,
+      plateau_low, plateau_high);
+  EXPECT_GT(cg.x(), 1000.0);  // past the slope, on the 70 m plateau
+  EXPECT_LT(-cg.z(), 70.1);   // lifted onto it (riding on its hull ends)
   EXPECT_GT(plateau_samples, 100);
-  EXPECT_GT(plateau_low, -0.01);                 // riding on its hull ends: 0 within a centimetre
+  EXPECT_GT(plateau_low, -0.01);  // riding on its hull ends: 0 within a centimetre
   EXPECT_LT(plateau_high, 0.01);
-  EXPECT_GT(lowest_hull, -0.1);                  // not pushed through on the slope either
+  EXPECT_GT(lowest_hull, -0.1);  // not pushed through on the slope either
   EXPECT_GT(lowest_joint, -0.1);
 }
 
@@ -192,7 +194,8 @@ TEST(Seabed, NonFinitePositionsGiveNaNNotACrash)
   EXPECT_TRUE(std::isnan(bottom.bottomZ(0.0, INFINITY)));
   EXPECT_FALSE(bottom.contactForce(Eigen::Vector3d(NAN, 0, -200), Eigen::Vector3d::Zero(), 1e4, 100).allFinite());
   Environment env;
-  env.current_profile = { CurrentSample{ 0.0, Eigen::Vector3d::Zero() }, CurrentSample{ 50.0, Eigen::Vector3d::Ones() } };
+  env.current_profile = { CurrentSample{ 0.0, Eigen::Vector3d::Zero() },
+                          CurrentSample{ 50.0, Eigen::Vector3d::Ones() } };
   EXPECT_FALSE(env.currentAt(NAN).allFinite());
 
   // A ship motion that turns NaN: the simulator throws and keeps its last good state, seabed or not.
@@ -201,15 +204,18 @@ TEST(Seabed, NonFinitePositionsGiveNaNNotACrash)
   cable.segments = 10;
   auto model = test::makeModel(cable, test::endLikeSegment(cable), env);
   model->setSeabed(std::make_shared<Seabed>(ridge(-1000.0, 1000.0, { 50.0, 60.0, 70.0 })));
-  Simulator sim(model, [](double t) {
-    ShipEndState s;
-    s.v_W = Eigen::Vector3d(1.0, 0.0, 0.0);
-    s.p_W = t * s.v_W;
-    if (t > 1.0)
-      s.a_W = Eigen::Vector3d::Constant(NAN);
-    return s;
-  });
-  sim.reset(0.0, straightChain(*model, Eigen::Vector3d::Zero(), Eigen::Vector3d(-1, 0, -0.5), Eigen::Vector3d(1, 0, 0)));
+  Simulator sim(model,
+                [](double t)
+                {
+                  ShipEndState s;
+                  s.v_W = Eigen::Vector3d(1.0, 0.0, 0.0);
+                  s.p_W = t * s.v_W;
+                  if (t > 1.0)
+                    s.a_W = Eigen::Vector3d::Constant(NAN);
+                  return s;
+                });
+  sim.reset(0.0,
+            straightChain(*model, Eigen::Vector3d::Zero(), Eigen::Vector3d(-1, 0, -0.5), Eigen::Vector3d(1, 0, 0)));
   EXPECT_THROW(sim.advanceTo(5.0), std::runtime_error);
   EXPECT_TRUE(sim.jointPositions().allFinite());
 }

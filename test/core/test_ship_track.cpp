@@ -113,7 +113,7 @@ TEST(ShipTrack, ExtrapolatesForABoundedTimeAndRejectsBadSamples)
   EXPECT_TRUE(track.add(0.0, Eigen::Vector3d::Zero(), Eigen::Vector3d(1, 0, 0)));
   EXPECT_TRUE(track.add(1.0, Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(1, 0, 0)));
   EXPECT_NEAR(track(1.3).p_W.x(), 1.3, 1e-12);
-  EXPECT_NEAR(track(5.0).p_W.x(), 1.5, 1e-12);  // held after 0.5 s
+  EXPECT_NEAR(track(5.0).p_W.x(), 1.5, 1e-12);                                     // held after 0.5 s
   EXPECT_FALSE(track.add(1.0, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()));  // duplicate stamp
   EXPECT_FALSE(track.add(0.5, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()));  // reordered
   const double nan = std::numeric_limits<double>::quiet_NaN();

@@ -4,8 +4,8 @@
 #include <Eigen/Geometry>
 #include <random>
 
-#include "core/dense_reference.h"
 #include "core/chain_fixtures.h"
+#include "core/dense_reference.h"
 #include "tow_sim/core/chain_solver.h"
 #include "tow_sim/core/vehicle.h"
 
@@ -114,7 +114,7 @@ RandomCase makeRandomCase(int segments, std::mt19937& rng, EndKind kind = EndKin
     c.x.col(e) = x_f + d * s;
     c.v.col(e) = v_f + d * omega.cross(s);  // consistent with the length constraint
     if (e == 0)
-      c.v.col(e) += payout_rate * s;         // ... and the winch's rate
+      c.v.col(e) += payout_rate * s;  // ... and the winch's rate
     x_f = c.x.col(e);
     v_f = c.v.col(e);
   }

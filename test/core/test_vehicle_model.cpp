@@ -23,9 +23,9 @@ TEST(Lamb, ProlateSpheroidCoefficientsMatchLambsTable)
 {
   // Lamb, "The inertia coefficients of an ellipsoid moving in fluid", ARC R&M 623 (1918), table of
   // c/a (length over breadth) against k1, k2 and k'. A negative entry is not compared.
-  const double table[][4] = { { 1.00, 0.500, 0.500, 0.000 }, { 1.50, 0.305, -1, 0.094 },  { 2.00, 0.209, -1, -1 },
-                              { 2.51, 0.156, -1, 0.367 },    { 2.99, 0.122, -1, 0.465 },  { 3.99, 0.082, 0.860, -1 },
-                              { 4.99, 0.059, -1, -1 },       { 6.01, 0.045, -1, -1 },     { 6.97, 0.036, -1, 0.805 },
+  const double table[][4] = { { 1.00, 0.500, 0.500, 0.000 }, { 1.50, 0.305, -1, 0.094 },    { 2.00, 0.209, -1, -1 },
+                              { 2.51, 0.156, -1, 0.367 },    { 2.99, 0.122, -1, 0.465 },    { 3.99, 0.082, 0.860, -1 },
+                              { 4.99, 0.059, -1, -1 },       { 6.01, 0.045, -1, -1 },       { 6.97, 0.036, -1, 0.805 },
                               { 8.01, 0.029, -1, -1 },       { 9.02, 0.024, 0.954, 0.865 }, { 9.97, 0.021, -1, -1 } };
   for (const auto& row : table)
   {
@@ -61,7 +61,7 @@ TEST(Fins, TablesAreOddAndEvenAndStall)
     EXPECT_DOUBLE_EQ(drag(-a), drag(a)) << a;
   }
   EXPECT_NEAR(lift(5 * kDeg), 5 * kDeg, 1e-12);  // F_L ~ a before the stall
-  EXPECT_LT(lift(30 * kDeg), lift(18 * kDeg));    // and it stalls
+  EXPECT_LT(lift(30 * kDeg), lift(18 * kDeg));   // and it stalls
   EXPECT_THROW(AngleTable({ 0.0, 1.0 }, { 0.0, 1.0 }, true, "vehicle.rudder.lift"), std::invalid_argument);
   EXPECT_THROW(AngleTable({ 0.0, kPi / 2 }, { 0.1, 1.0 }, true, "vehicle.rudder.lift"), std::invalid_argument);
 }
@@ -226,7 +226,8 @@ TEST(AddedMass, FreeBodyKeepsEnergyAndImpulse)
     Eigen::Matrix3d R;
     Vector6d nu;  // [v_B; w_B]
   };
-  auto derivative = [&](const Body& b) {
+  auto derivative = [&](const Body& b)
+  {
     const Eigen::Vector3d v = b.nu.head<3>(), w = b.nu.tail<3>();
     Vector6d rhs;
     rhs.head<3>() = -p.mass * w.cross(v) - A.topLeftCorner<3, 3>() * w.cross(v);
@@ -240,9 +241,12 @@ TEST(AddedMass, FreeBodyKeepsEnergyAndImpulse)
     d.nu = M_inv * rhs;
     return d;
   };
-  auto add = [](const Body& b, const Body& d, double h) { return Body{ b.p + h * d.p, b.R + h * d.R, b.nu + h * d.nu }; };
+  auto add = [](const Body& b, const Body& d, double h) {
+    return Body{ b.p + h * d.p, b.R + h * d.R, b.nu + h * d.nu };
+  };
   auto energy = [&](const Body& b) { return 0.5 * b.nu.dot(M * b.nu); };
-  auto impulse = [&](const Body& b) {
+  auto impulse = [&](const Body& b)
+  {
     const Vector6d h = M * b.nu;  // body-axis impulse about the CG
     const Eigen::Vector3d linear = b.R * h.head<3>();
     Vector6d out;

@@ -67,11 +67,12 @@ TEST(VehicleTow, StraightTowIsStableInYawAndPitch)
   const Eigen::Vector3d u(2.0, 0.0, 0.0);
   Simulator at_rest(tow.model, constantVelocityShip(Eigen::Vector3d::Zero(), u));
   at_rest.reset(0.0, steadyTowEquilibrium(*tow.model, 0.0, Eigen::Vector3d::Zero(), u).state);
-  const VehicleOutputs eq = tow.vehicle->outputs(0.0, at_rest.elementKinematics(tow.model->segments()),
-                                                 tow.model->environment());
-  std::printf("trim at 2 m/s: depth %.3f m, pitch %.4f deg, yaw %.5f deg, bail tension %.2f N; equilibrium solver: "
-              "depth %.3f m, pitch %.4f deg\n",
-              trim.depth, trim.pitch / kDeg, trim.yaw / kDeg, tow.bailTension(), eq.depth, eq.pitch / kDeg);
+  const VehicleOutputs eq =
+      tow.vehicle->outputs(0.0, at_rest.elementKinematics(tow.model->segments()), tow.model->environment());
+  std::printf(
+      "trim at 2 m/s: depth %.3f m, pitch %.4f deg, yaw %.5f deg, bail tension %.2f N; equilibrium solver: "
+      "depth %.3f m, pitch %.4f deg\n",
+      trim.depth, trim.pitch / kDeg, trim.yaw / kDeg, tow.bailTension(), eq.depth, eq.pitch / kDeg);
   EXPECT_NEAR(trim.yaw, 0.0, 1e-6);  // trails straight behind the ship
   EXPECT_NEAR(trim.pitch, eq.pitch, 0.01 * kDeg);
   EXPECT_NEAR(trim.depth, eq.depth, 0.01);
@@ -83,15 +84,17 @@ TEST(VehicleTow, StraightTowIsStableInYawAndPitch)
   for (int disturbance = 0; disturbance < 2; ++disturbance)
   {
     tow.sim->reset(300.0, settled);
-    const Eigen::Vector3d axis = disturbance == 0 ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d(tow.out().q_WB * Eigen::Vector3d::UnitY());
+    const Eigen::Vector3d axis =
+        disturbance == 0 ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d(tow.out().q_WB * Eigen::Vector3d::UnitY());
     rotateVehicle(tow, axis, 10 * kDeg);
     const VehicleOutputs kicked = tow.out();
     const double kick = disturbance == 0 ? std::abs(kicked.yaw - trim.yaw) : std::abs(kicked.pitch - trim.pitch);
     EXPECT_NEAR(kick, 10 * kDeg, 1 * kDeg);
     tow.sim->advanceTo(360.0);
     const VehicleOutputs after = tow.out();
-    std::printf("%s 10 deg: after 60 s yaw error %.5f deg, pitch error %.5f deg\n", disturbance == 0 ? "yawed" : "pitched",
-                (after.yaw - trim.yaw) / kDeg, (after.pitch - trim.pitch) / kDeg);
+    std::printf("%s 10 deg: after 60 s yaw error %.5f deg, pitch error %.5f deg\n",
+                disturbance == 0 ? "yawed" : "pitched", (after.yaw - trim.yaw) / kDeg,
+                (after.pitch - trim.pitch) / kDeg);
     // README: back to trim within 0.001 deg (measured 0.0010 and 0.0006 deg).
     EXPECT_LT(std::abs(after.yaw - trim.yaw), 0.003 * kDeg);
     EXPECT_LT(std::abs(after.pitch - trim.pitch), 0.003 * kDeg);
@@ -103,7 +106,8 @@ TEST(VehicleTow, ElevatorRaisesRudderTurnsToPortThrustUnloadsTheBail)
   Tow tow = makeTow(VehicleParams(), 2.0);
   tow.sim->advanceTo(300.0);
   const ChainState settled = tow.sim->state();
-  auto runWith = [&](double rudder, double elevator, double thrust, double duration) {
+  auto runWith = [&](double rudder, double elevator, double thrust, double duration)
+  {
     tow.sim->reset(300.0, settled);
     tow.vehicle->resetActuators(300.0);
     tow.vehicle->command(300.0, rudder, elevator, thrust);
@@ -121,11 +125,12 @@ TEST(VehicleTow, ElevatorRaisesRudderTurnsToPortThrustUnloadsTheBail)
   const Eigen::Vector3d x_b = pushed.first.q_WB * Eigen::Vector3d::UnitX();
   const double expected_relief = thrust * x_b.x();
   const double rise = base.first.depth - up.first.depth, to_port = port.first.p_cg_W.y() - base.first.p_cg_W.y();
-  std::printf("after 60 s: elevator +0.2 rad rises %.4f m; rudder +0.2 rad moves %.4f m to port; %.0f N thrust: "
-              "bail tension %.1f N -> %.1f N, its forward component %.2f N -> %.2f N (expected fall T_p x_b.x = "
-              "%.2f N)\n",
-              rise, to_port, thrust, base.second.norm(), pushed.second.norm(), base.second.x(), pushed.second.x(),
-              expected_relief);
+  std::printf(
+      "after 60 s: elevator +0.2 rad rises %.4f m; rudder +0.2 rad moves %.4f m to port; %.0f N thrust: "
+      "bail tension %.1f N -> %.1f N, its forward component %.2f N -> %.2f N (expected fall T_p x_b.x = "
+      "%.2f N)\n",
+      rise, to_port, thrust, base.second.norm(), pushed.second.norm(), base.second.x(), pushed.second.x(),
+      expected_relief);
   // Regression of the README's figures (0.33 m each): a fin lift constant off by 20 % fails.
   EXPECT_NEAR(rise, 0.33, 0.03);
   EXPECT_NEAR(to_port, 0.33, 0.03);
@@ -138,7 +143,8 @@ TEST(VehicleTow, ElevatorRaisesRudderTurnsToPortThrustUnloadsTheBail)
 // bail at the CG and no fins or normal drag, nothing opposes it; fins do.
 TEST(VehicleTow, FinlessSpheroidTurnsBroadsideFinnedOneDoesNot)
 {
-  auto spheroidVehicle = [](double fin_lift) {
+  auto spheroidVehicle = [](double fin_lift)
+  {
     VehicleParams p;
     p.cg_from_bail = 0.0;
     p.cb_from_bail = 0.0;
@@ -208,9 +214,10 @@ TEST(VehicleTow, HangingVehicleSettlesWhereWeightAndBuoyancyMomentsBalance)
       previous_axis = axis;
     }
     const ElementKinematics k = tow.sim->elementKinematics(tow.model->segments());
-    std::printf("CB %.2f m aft of the bail: W d_CG = %.1f N m, B d_CB = %.1f N m, axis s_z = %.5f; published "
-                "attitude: largest change in 0.5 s %.2f deg, largest turn beyond the axis' after 150 s %.2e deg\n",
-                cb, weight_moment, buoyancy_moment, k.s.z(), largest_step / kDeg, largest_excess / kDeg);
+    std::printf(
+        "CB %.2f m aft of the bail: W d_CG = %.1f N m, B d_CB = %.1f N m, axis s_z = %.5f; published "
+        "attitude: largest change in 0.5 s %.2f deg, largest turn beyond the axis' after 150 s %.2e deg\n",
+        cb, weight_moment, buoyancy_moment, k.s.z(), largest_step / kDeg, largest_excess / kDeg);
     EXPECT_NEAR(k.s.z(), expected_s_z, 1e-3);
     EXPECT_NEAR(tow.out().pitch, expected_s_z < 0.0 ? -kPi / 2 : kPi / 2, 0.05);  // REP-103: nose down positive
     // Near the vertical the published attitude follows the swing of the axis, without heading flips.

@@ -43,14 +43,16 @@ Tow makeTow(double length, int segments, const Eigen::Vector3d& ship_velocity, c
   tow.vehicle = std::make_shared<Vehicle>(VehicleParams());
   tow.vehicle->resetActuators(0.0);
   tow.model = std::make_shared<ChainModel>(cable, tow.vehicle, Environment(), NumericsParams());
-  tow.sim = std::make_unique<Simulator>(tow.model, constantVelocityShip(Eigen::Vector3d::Zero(), ship_velocity),
-                                        winch);
+  tow.sim = std::make_unique<Simulator>(tow.model, constantVelocityShip(Eigen::Vector3d::Zero(), ship_velocity), winch);
   const EquilibriumResult eq = steadyTowEquilibrium(*tow.model, 0.0, Eigen::Vector3d::Zero(), ship_velocity);
   tow.sim->reset(0.0, eq.state);
   return tow;
 }
 
-double vehicleDepth(const Simulator& sim) { return -sim.jointPositions().rightCols<1>().z(); }
+double vehicleDepth(const Simulator& sim)
+{
+  return -sim.jointPositions().rightCols<1>().z();
+}
 
 // Sum of the element lengths along the chain, and what the cable's layout says.
 void expectBookkeeping(const Simulator& sim)
@@ -138,15 +140,16 @@ TEST(Winch, LimitsOnRateAccelerationAndLengthHold)
     if (i % 100 == 0)
       expectBookkeeping(*tow.sim);
   }
-  std::printf("winch limits: |rate| <= %.6f m/s (1), |accel| <= %.6f m/s^2 (0.2), length %.6f .. %.6f m "
-              "(280 .. 320), %d segments at the end\n",
-              worst_rate, worst_accel, shortest, longest, tow.model->segments());
+  std::printf(
+      "winch limits: |rate| <= %.6f m/s (1), |accel| <= %.6f m/s^2 (0.2), length %.6f .. %.6f m "
+      "(280 .. 320), %d segments at the end\n",
+      worst_rate, worst_accel, shortest, longest, tow.model->segments());
   EXPECT_LE(worst_rate, 1.0 + 1e-9);
   EXPECT_GT(worst_rate, 0.99);  // it did reach full speed
   EXPECT_LE(worst_accel, 0.2 * (1.0 + 1e-3));
   EXPECT_LE(longest, 320.0 + 1e-9);
   EXPECT_GE(shortest, 280.0 - 1e-9);
-  EXPECT_GT(longest, 319.9);    // it did reach both limits
+  EXPECT_GT(longest, 319.9);  // it did reach both limits
   EXPECT_LT(shortest, 280.1);
 }
 
@@ -181,9 +184,10 @@ TEST(Winch, PayingOutDeepensTowardTheLongerCablesEquilibrium)
   EXPECT_EQ(tow.model->segments(), 80);
   tow.sim->advanceTo(1200.0);
   const double end_depth = vehicleDepth(*tow.sim);
-  std::printf("paying out 100 m at 1 m/s: depth %.2f m -> %.2f m (deepest %.2f m); equilibrium of the 400 m cable "
-              "%.2f m; largest length error before projection %.1e\n",
-              start_depth, end_depth, deepest, target_depth, worst_error);
+  std::printf(
+      "paying out 100 m at 1 m/s: depth %.2f m -> %.2f m (deepest %.2f m); equilibrium of the 400 m cable "
+      "%.2f m; largest length error before projection %.1e\n",
+      start_depth, end_depth, deepest, target_depth, worst_error);
   EXPECT_TRUE(deepening);
   EXPECT_NEAR(end_depth, target_depth, 0.01);
   EXPECT_GT(target_depth - start_depth, 10.0);  // a real change to follow
@@ -215,10 +219,11 @@ TEST(Winch, PayingOutAndHaulingBackAtRestReturnsTheSameShape)
   tow.sim->setWinchCommand(0.0);
   tow.sim->advanceTo(300.0);
   const Eigen::Matrix3Xd end = tow.sim->jointPositions();
-  std::printf("at rest: paid out %.2f m (%d segments), hauled back to %.6f m (%d segments); largest joint offset "
-              "from the start %.2e m\n",
-              paid, segments_out, tow.sim->cableLength(), tow.model->segments(),
-              end.cols() == start.cols() ? (end - start).cwiseAbs().maxCoeff() : -1.0);
+  std::printf(
+      "at rest: paid out %.2f m (%d segments), hauled back to %.6f m (%d segments); largest joint offset "
+      "from the start %.2e m\n",
+      paid, segments_out, tow.sim->cableLength(), tow.model->segments(),
+      end.cols() == start.cols() ? (end - start).cwiseAbs().maxCoeff() : -1.0);
   EXPECT_GT(paid, 40.0);
   EXPECT_GT(segments_out, 67);
   EXPECT_NEAR(tow.sim->cableLength(), 300.0, 1e-6);
@@ -240,10 +245,11 @@ TEST(Winch, PayingOutAndHaulingBackUnderwayReturnsToTheSteadyTow)
   tow.sim->advanceTo(200.0);
   tow.sim->advanceTo(1100.0);
   const Eigen::Matrix3Xd end = tow.sim->jointPositions().colwise() - tow.sim->shipEnd().p_W;
-  std::printf("underway: depth %.2f m -> %.2f m with 50 m more -> back to %.6f m, %d segments; largest joint offset "
-              "from the start after settling %.2e m\n",
-              -start(2, start.cols() - 1), depth_out, tow.sim->cableLength(), tow.model->segments(),
-              end.cols() == start.cols() ? (end - start).colwise().norm().maxCoeff() : -1.0);
+  std::printf(
+      "underway: depth %.2f m -> %.2f m with 50 m more -> back to %.6f m, %d segments; largest joint offset "
+      "from the start after settling %.2e m\n",
+      -start(2, start.cols() - 1), depth_out, tow.sim->cableLength(), tow.model->segments(),
+      end.cols() == start.cols() ? (end - start).colwise().norm().maxCoeff() : -1.0);
   EXPECT_GT(depth_out + start(2, start.cols() - 1), 3.0);  // it went deeper on the way out
   EXPECT_NEAR(tow.sim->cableLength(), 300.0, 1e-6);
   ASSERT_EQ(end.cols(), start.cols());
@@ -257,8 +263,8 @@ TEST(Winch, ADisabledWinchDoesNotConstrainTheCable)
   cable.length = 1000.0;
   cable.segments = 4;  // 250 m segments: beyond the enabled winch's default min_length band
   EXPECT_NO_THROW(validate(WinchParams(), cable));
-  auto model = std::make_shared<ChainModel>(cable, std::make_shared<Vehicle>(VehicleParams()), Environment(),
-                                            NumericsParams());
+  auto model =
+      std::make_shared<ChainModel>(cable, std::make_shared<Vehicle>(VehicleParams()), Environment(), NumericsParams());
   EXPECT_NO_THROW(Simulator(model, constantVelocityShip(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero())));
 }
 
@@ -329,9 +335,10 @@ TEST(Winch, PaidOutCableDragsAtItsOwnSpeedThroughTheWater)
   const double net_weight = (cable.mass_per_length - env.water_density * area) * env.gravity * L0;
   const double c1 = 0.5 * env.water_density * cable.tangential_drag_coefficient * M_PI * cable.diameter;
   const double drop = sim.tensions().col(0).z() - sim.tensions().col(1).z();
-  std::printf("first segment %.3f m paid out at 1 m/s: tension drop %.4f N = weight %.4f N - drag %.4f N (at the "
-              "midpoint's 0.5 m/s: %.4f N)\n",
-              L0, drop, net_weight, net_weight - drop, c1 * L0 * 0.25);
+  std::printf(
+      "first segment %.3f m paid out at 1 m/s: tension drop %.4f N = weight %.4f N - drag %.4f N (at the "
+      "midpoint's 0.5 m/s: %.4f N)\n",
+      L0, drop, net_weight, net_weight - drop, c1 * L0 * 0.25);
   EXPECT_NEAR(net_weight - drop, c1 * L0, 0.02 * c1 * L0);
 }
 

@@ -11,16 +11,16 @@
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
 
+#include <dirent.h>
 #include <atomic>
 #include <cmath>
-#include <dirent.h>
-#include <fstream>
-#include <string>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
+#include <fstream>
 #include <limits>
 #include <mutex>
 #include <random>
+#include <string>
 
 #include <diagnostic_msgs/DiagnosticArray.h>
 
@@ -102,7 +102,8 @@ TEST(OdomSoak, KeepsPublishingThroughDropoutsBurstsAndRestarts)
   std::uniform_real_distribution<double> u(0.0, 1.0);
   const ros::WallTime start = ros::WallTime::now();
   double x = 0.0;
-  auto message = [&](const ros::Time& stamp) {
+  auto message = [&](const ros::Time& stamp)
+  {
     nav_msgs::Odometry m;
     m.header.stamp = stamp;
     m.header.frame_id = "odom";
@@ -204,9 +205,10 @@ TEST(OdomSoak, KeepsPublishingThroughDropoutsBurstsAndRestarts)
       starvation_at_start = starvation();
     }
   }
-  std::printf("odometry soak: %.0f s, %d windows of 10 s, fewest cable/state messages in a window: %d (rate 10 Hz); "
-              "smallest margin over the rate less starvation %.1f messages; largest run-queue wait in a window %.2f s\n",
-              duration, windows, worst, worst_margin, largest_starvation);
+  std::printf(
+      "odometry soak: %.0f s, %d windows of 10 s, fewest cable/state messages in a window: %d (rate 10 Hz); "
+      "smallest margin over the rate less starvation %.1f messages; largest run-queue wait in a window %.2f s\n",
+      duration, windows, worst, worst_margin, largest_starvation);
   // A window closes at the first check after 10 s; dropouts and restarts can stretch it to 15 s.
   EXPECT_GE(windows, static_cast<int>(duration / 15.0) - 1);
   EXPECT_GE(worst_margin, 0.0);

@@ -53,8 +53,7 @@ TEST(RvizScreenshot, TheCableIsDrawnInItsTensionColours)
       if ((b - r > 90 || g - r > 90) && (b > 110 || g > 110))  // saturated blue to green, not the sea
         ++cable_pixels;
     }
-  std::printf("rviz screenshot %dx%d: %d cable-coloured pixels in the 3D view\n", img.width, img.height,
-              cable_pixels);
+  std::printf("rviz screenshot %dx%d: %d cable-coloured pixels in the 3D view\n", img.width, img.height, cable_pixels);
   EXPECT_GT(cable_pixels, 100);
   EXPECT_LT(cable_pixels, view_pixels / 5);  // a line, not a blue screen
 }

@@ -56,7 +56,8 @@ public:
     {
       const std::string n = name;
       subs_.push_back(nh_.subscribe<tow_sim::CableState>("/" + n + "/cable/state", 50,
-                                                         [this, n](const tow_sim::CableState::ConstPtr& m) {
+                                                         [this, n](const tow_sim::CableState::ConstPtr& m)
+                                                         {
                                                            std::lock_guard<std::mutex> lock(rec_.mutex);
                                                            rec_.state[n] = *m;
                                                            ++rec_.state_count[n];
@@ -64,27 +65,32 @@ public:
                                                              ++rec_.non_finite_states[n];
                                                          }));
       subs_.push_back(nh_.subscribe<nav_msgs::Odometry>("/" + n + "/vehicle/odom", 50,
-                                                        [this, n](const nav_msgs::Odometry::ConstPtr& m) {
+                                                        [this, n](const nav_msgs::Odometry::ConstPtr& m)
+                                                        {
                                                           std::lock_guard<std::mutex> lock(rec_.mutex);
                                                           rec_.odom[n] = *m;
                                                         }));
-      subs_.push_back(nh_.subscribe<visualization_msgs::MarkerArray>(
-          "/" + n + "/cable/markers", 5, [this, n](const visualization_msgs::MarkerArray::ConstPtr&) {
-            std::lock_guard<std::mutex> lock(rec_.mutex);
-            ++rec_.marker_count[n];
-          }));
+      subs_.push_back(
+          nh_.subscribe<visualization_msgs::MarkerArray>("/" + n + "/cable/markers", 5,
+                                                         [this, n](const visualization_msgs::MarkerArray::ConstPtr&)
+                                                         {
+                                                           std::lock_guard<std::mutex> lock(rec_.mutex);
+                                                           ++rec_.marker_count[n];
+                                                         }));
       fin_pubs_[n] = nh_.advertise<tow_sim::FinCommand>("/" + n + "/fins/command", 5);
     }
-    subs_.push_back(nh_.subscribe<diagnostic_msgs::DiagnosticArray>(
-        "/diagnostics", 50, [this](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
-          std::lock_guard<std::mutex> lock(rec_.mutex);
-          for (const auto& status : m->status)
-          {
-            rec_.diagnostics[status.name + "/summary"] = status.message;
-            for (const auto& kv : status.values)
-              rec_.diagnostics[status.name + "/" + kv.key] = kv.value;
-          }
-        }));
+    subs_.push_back(
+        nh_.subscribe<diagnostic_msgs::DiagnosticArray>("/diagnostics", 50,
+                                                        [this](const diagnostic_msgs::DiagnosticArray::ConstPtr& m)
+                                                        {
+                                                          std::lock_guard<std::mutex> lock(rec_.mutex);
+                                                          for (const auto& status : m->status)
+                                                          {
+                                                            rec_.diagnostics[status.name + "/summary"] = status.message;
+                                                            for (const auto& kv : status.values)
+                                                              rec_.diagnostics[status.name + "/" + kv.key] = kv.value;
+                                                          }
+                                                        }));
     spinner_.start();
     publishClock();
     // Wait until every node listens to the ship before the first odometry, so all start alike.
@@ -300,7 +306,8 @@ TEST(TowSimNode, ElevatorRaisesTheVehicleRudderMovesItToPort)
 TEST(TowSimNode, RejectsBadOdometryAndKeepsRunning)
 {
   nav_msgs::Odometry good = world->shipOdometry();
-  auto send = [&](nav_msgs::Odometry m) {
+  auto send = [&](nav_msgs::Odometry m)
+  {
     m.header.stamp = ros::Time(world->time_ + 0.001);
     world->robust_odom_pub_.publish(m);
     ros::WallDuration(0.05).sleep();
@@ -331,7 +338,7 @@ TEST(TowSimNode, RejectsBadOdometryAndKeepsRunning)
   const auto& base = world->rec_.state["base"];
   EXPECT_TRUE(allFinite(robust));
   EXPECT_NEAR(robust.vehicle_depth, base.vehicle_depth, 0.5);  // unharmed: it follows the good odometry
-  EXPECT_NEAR(robust.joints[0].y, 0.0, 1e-6);                   // the kilometre jump never got in
+  EXPECT_NEAR(robust.joints[0].y, 0.0, 1e-6);                  // the kilometre jump never got in
   bool found = false;
   for (const auto& kv : world->rec_.diagnostics)
     if (kv.first.find("robust") != std::string::npos && kv.first.find("rejected messages") != std::string::npos)
@@ -390,7 +397,8 @@ TEST(TowSimNode, DivergenceRestartsThenHoldsAndNothingNonFiniteIsPublished)
 {
   // The unstable node has been diverging since the start: it restarts a few times, then holds its last good
   // state and says so (an error, not a loop); it never publishes a non-finite state.
-  auto unstable = [](const std::string& key) {
+  auto unstable = [](const std::string& key)
+  {
     for (const auto& kv : world->rec_.diagnostics)
       if (kv.first.find("unstable") != std::string::npos && kv.first.find(key) != std::string::npos)
         return kv.second;
@@ -468,10 +476,11 @@ TEST(TowSimNode, WinchPaysOutOverTheSeabedAndTheStateSaysSo)
   world->advance(20.0);
   std::lock_guard<std::mutex> lock(world->rec_.mutex);
   const tow_sim::CableState& s = world->rec_.state["winch"];
-  std::printf("winch: %.2f m -> %.2f m of cable at %.3f m/s, %zu -> %zu joints; depth %.2f m, altitude %.2f m over "
-              "the 60 m seabed\n",
-              length_before, s.cable_length, s.payout_rate, joints_before, s.joints.size(), s.vehicle_depth,
-              s.vehicle_altitude);
+  std::printf(
+      "winch: %.2f m -> %.2f m of cable at %.3f m/s, %zu -> %zu joints; depth %.2f m, altitude %.2f m over "
+      "the 60 m seabed\n",
+      length_before, s.cable_length, s.payout_rate, joints_before, s.joints.size(), s.vehicle_depth,
+      s.vehicle_altitude);
   EXPECT_NEAR(length_before, 100.0, 1e-6);
   EXPECT_GT(s.cable_length, 115.0);  // about 18 m in 20 s, after the rate ramp
   EXPECT_LT(s.cable_length, 121.0);

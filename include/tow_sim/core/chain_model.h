@@ -30,9 +30,9 @@ public:
 
   // The layout may change while running (winch): nu segments, the first (at the ship) of length
   // firstLength(), the others of the nominal length cable.length / cable.segments.
-  int segments() const { return segments_; }            // nu
-  int elementCount() const { return segments_ + 1; }    // nu + 1
-  int jointCount() const { return segments_ + 1; }      // unknown joints x_2 .. x_{nu+2}
+  int segments() const { return segments_; }          // nu
+  int elementCount() const { return segments_ + 1; }  // nu + 1
+  int jointCount() const { return segments_ + 1; }    // unknown joints x_2 .. x_{nu+2}
   double elementLength(int e) const
   {
     return e == 0 ? first_.length : (e < segments_ ? segment_.length : end_body_->length());
@@ -41,7 +41,7 @@ public:
   double cableLength() const { return first_.length + (segments_ - 1) * segment_.length; }  // [m] cable out
   double totalLength() const { return cableLength() + end_body_->length(); }
   double firstLength() const { return first_.length; }
-  double firstRate() const { return first_rate_; }    // [m/s] d/dt of the first segment's length
+  double firstRate() const { return first_rate_; }                  // [m/s] d/dt of the first segment's length
   double firstAcceleration() const { return first_acceleration_; }  // [m/s^2]
 
   // Winch: the first segment's length [m] (> 0), its rate [m/s] and acceleration [m/s^2] now; and
@@ -66,8 +66,7 @@ public:
 
   // Newton-Euler description of element e at time t [s] and the given kinematics; with_contact false
   // leaves out the seabed.
-  void elementDynamics(int e, double t, const ElementKinematics& k, BodyDynamics& out,
-                       bool with_contact = true) const;
+  void elementDynamics(int e, double t, const ElementKinematics& k, BodyDynamics& out, bool with_contact = true) const;
 
 private:
   CableParams cable_;

@@ -3,8 +3,8 @@
 // private parameters, converted to YAML), so every key is read, defaulted and checked in one place.
 #pragma once
 
-#include <string>
 #include <yaml-cpp/yaml.h>
+#include <string>
 
 #include "tow_sim/core/params.h"
 #include "tow_sim/core/seabed.h"

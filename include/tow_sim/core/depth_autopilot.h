@@ -71,9 +71,9 @@ private:
 // Vehicle CG measurement from odometry.
 struct VehicleMeasurement
 {
-  double t = 0.0;                                 // [s] stamp
-  Eigen::Vector3d p_W = Eigen::Vector3d::Zero();  // [m] CG position, world ENU (z up, depth = -z)
-  Eigen::Vector3d v_W = Eigen::Vector3d::Zero();  // [m/s] CG velocity, world ENU
+  double t = 0.0;                                              // [s] stamp
+  Eigen::Vector3d p_W = Eigen::Vector3d::Zero();               // [m] CG position, world ENU (z up, depth = -z)
+  Eigen::Vector3d v_W = Eigen::Vector3d::Zero();               // [m/s] CG velocity, world ENU
   double altitude = std::numeric_limits<double>::quiet_NaN();  // [m] CG above the seabed; NaN: unknown
   // [s] when it arrived, on update()'s clock; NaN: at its stamp. Staleness counts from here.
   double received = std::numeric_limits<double>::quiet_NaN();

@@ -41,17 +41,16 @@ struct BodyDynamics
 // Constant description of a uniform cable segment (physics.md §4).
 struct CableSegmentModel
 {
-  double length = 0.0;          // [m] d_lambda
-  double mass = 0.0;            // [kg] m_lambda = w d / g (mass in air)
-  double net_weight = 0.0;      // [N] (w - b) d, weight in water
-  double c1 = 0.0;              // [N s^2/m^3] tangential drag constant
-  double c2 = 0.0;              // [N s^2/m^3] normal drag constant
-  double added_mass = 0.0;      // [kg] e_lambda, Walton-Polachek, acts on the normal acceleration
+  double length = 0.0;      // [m] d_lambda
+  double mass = 0.0;        // [kg] m_lambda = w d / g (mass in air)
+  double net_weight = 0.0;  // [N] (w - b) d, weight in water
+  double c1 = 0.0;          // [N s^2/m^3] tangential drag constant
+  double c2 = 0.0;          // [N s^2/m^3] normal drag constant
+  double added_mass = 0.0;  // [kg] e_lambda, Walton-Polachek, acts on the normal acceleration
   TangentialDragModel tangential_model = TangentialDragModel::kPode;
   double smoothing_speed = 0.01;  // [m/s] width of the smooth sign of u.s (Pode model)
 
-  static CableSegmentModel fromParams(const CableParams& cable, const Environment& env,
-                                      const NumericsParams& numerics);
+  static CableSegmentModel fromParams(const CableParams& cable, const Environment& env, const NumericsParams& numerics);
 };
 
 // Velocity forces of a cylinder-like element through the water (Appendix D), evaluated at the element

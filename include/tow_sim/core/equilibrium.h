@@ -15,10 +15,10 @@ namespace tow_sim
 {
 struct EquilibriumResult
 {
-  ChainState state;              // joints x_2 .. x_{nu+2}, all moving with the ship
-  Eigen::Matrix3Xd tensions;     // [N] T_1 .. T_{nu+1}
-  int iterations = 0;            // Newton iterations, all elements
-  double largest_residual = 0.0; // [N m] largest moment residual left
+  ChainState state;               // joints x_2 .. x_{nu+2}, all moving with the ship
+  Eigen::Matrix3Xd tensions;      // [N] T_1 .. T_{nu+1}
+  int iterations = 0;             // Newton iterations, all elements
+  double largest_residual = 0.0;  // [N m] largest moment residual left
 };
 
 // Throws std::runtime_error naming the element when no direction balances it (or the speed or current

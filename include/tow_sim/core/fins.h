@@ -35,13 +35,13 @@ private:
 
 struct FinPairParams
 {
-  double lift_constant = 150.0;      // [N s^2/m^2] C3 (vertical) or C5 (horizontal), >= 0
-  double drag_constant = 50.0;       // [N s^2/m^2] C4 or C6, >= 0
+  double lift_constant = 150.0;                 // [N s^2/m^2] C3 (vertical) or C5 (horizontal), >= 0
+  double drag_constant = 50.0;                  // [N s^2/m^2] C4 or C6, >= 0
   AngleTable lift = AngleTable::defaultLift();  // F_L, odd
   AngleTable drag = AngleTable::defaultDrag();  // F_D, even
-  double max_deflection = 0.436;     // [rad] commands saturate at +-this (25 deg), (0, pi/2]
-  double max_rate = 0.35;            // [rad/s] servo slew rate (20 deg/s), > 0
-  double center_of_pressure_offset = 0.0;  // [m] chord-wise, aft of the fin's hinge axis, for the hinge moment
+  double max_deflection = 0.436;                // [rad] commands saturate at +-this (25 deg), (0, pi/2]
+  double max_rate = 0.35;                       // [rad/s] servo slew rate (20 deg/s), > 0
+  double center_of_pressure_offset = 0.0;       // [m] chord-wise, aft of the fin's hinge axis, for the hinge moment
 };
 
 void validate(const FinPairParams& fin, const std::string& prefix);
@@ -52,7 +52,7 @@ class FinServo
 {
 public:
   explicit FinServo(double max_deflection = 0.436, double max_rate = 0.35)
-    : max_deflection_(max_deflection), max_rate_(max_rate)
+      : max_deflection_(max_deflection), max_rate_(max_rate)
   {
   }
   // New command at time t [s]; returns the saturated target [rad].
@@ -69,17 +69,17 @@ private:
 // Loads on one fin pair, body or world axes as stated.
 struct FinPairLoads
 {
-  double angle = 0.0;              // [rad] actual deflection
-  double angle_of_attack = 0.0;    // [rad] deflection minus inflow angle (alpha - alpha_1)
-  double inflow_angle = 0.0;       // [rad] alpha_1 or beta_1
-  Eigen::Vector3d lift_W = Eigen::Vector3d::Zero();    // [N]
-  Eigen::Vector3d drag_W = Eigen::Vector3d::Zero();    // [N]
+  double angle = 0.0;                                     // [rad] actual deflection
+  double angle_of_attack = 0.0;                           // [rad] deflection minus inflow angle (alpha - alpha_1)
+  double inflow_angle = 0.0;                              // [rad] alpha_1 or beta_1
+  Eigen::Vector3d lift_W = Eigen::Vector3d::Zero();       // [N]
+  Eigen::Vector3d drag_W = Eigen::Vector3d::Zero();       // [N]
   Eigen::Vector3d moment_cg_W = Eigen::Vector3d::Zero();  // [N m] of lift + drag about the vehicle CG
   Eigen::Vector3d lift_B = Eigen::Vector3d::Zero();       // [N] the same three in body axes (FLU),
   Eigen::Vector3d drag_B = Eigen::Vector3d::Zero();       //     filled by Vehicle::outputs()
   Eigen::Vector3d moment_cg_B = Eigen::Vector3d::Zero();  // [N m]
-  double hinge_moment = 0.0;       // [N m] about the hinge axis (z_b vertical fins, y_b horizontal), from the
-                                   // centre-of-pressure offset
+  double hinge_moment = 0.0;  // [N m] about the hinge axis (z_b vertical fins, y_b horizontal), from the
+                              // centre-of-pressure offset
 };
 
 enum class FinPlane
@@ -91,6 +91,7 @@ enum class FinPlane
 // Loads of a fin pair whose point moves through the water at v_W (world), body axes x_b, y_b, z_b (world),
 // deflected by `angle`, lying `arm` metres aft of the CG along s = -x_b.
 FinPairLoads finPairLoads(const FinPairParams& fin, FinPlane plane, double angle, const Eigen::Vector3d& v_W,
-                      const Eigen::Vector3d& x_b, const Eigen::Vector3d& y_b, const Eigen::Vector3d& z_b, double arm);
+                          const Eigen::Vector3d& x_b, const Eigen::Vector3d& y_b, const Eigen::Vector3d& z_b,
+                          double arm);
 
 }  // namespace tow_sim

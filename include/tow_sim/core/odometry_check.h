@@ -12,23 +12,23 @@ namespace tow_sim
 {
 struct OdometryInput
 {
-  double t = 0.0;                                     // [s] stamp, on the ShipTrack's time axis
-  std::string frame_id;                               // header.frame_id
-  Eigen::Vector3d p_W = Eigen::Vector3d::Zero();      // [m] ship position, world
+  double t = 0.0;                                        // [s] stamp, on the ShipTrack's time axis
+  std::string frame_id;                                  // header.frame_id
+  Eigen::Vector3d p_W = Eigen::Vector3d::Zero();         // [m] ship position, world
   Eigen::Vector4d q_wxyz = Eigen::Vector4d(1, 0, 0, 0);  // orientation as sent (not necessarily unit)
-  Eigen::Vector3d v_S = Eigen::Vector3d::Zero();      // [m/s] linear velocity, ship frame (REP-105)
-  Eigen::Vector3d w_S = Eigen::Vector3d::Zero();      // [rad/s] angular velocity, ship frame
+  Eigen::Vector3d v_S = Eigen::Vector3d::Zero();         // [m/s] linear velocity, ship frame (REP-105)
+  Eigen::Vector3d w_S = Eigen::Vector3d::Zero();         // [rad/s] angular velocity, ship frame
 };
 
 struct OdometryLimits
 {
   std::string world_frame = "odom";
   Eigen::Vector3d tow_point_S = Eigen::Vector3d(-20.0, 0.0, 0.0);  // [m]
-  double max_ship_speed = 25.0;     // [m/s] of the tow point, and for jumps
-  double max_future = 1.0;          // [s] stamps later than now + this are refused
-  double max_age = 10.0;            // [s] stamps earlier than now - this are refused (a publisher on another clock)
-  double max_jump_slack = 10.0;     // [m] a sample may land this far from the extrapolated track, plus speed x dt
-  double max_position = 1e7;        // [m] each position component within +-this (joints 1e-9 m apart in double)
+  double max_ship_speed = 25.0;                                    // [m/s] of the tow point, and for jumps
+  double max_future = 1.0;                                         // [s] stamps later than now + this are refused
+  double max_age = 10.0;         // [s] stamps earlier than now - this are refused (a publisher on another clock)
+  double max_jump_slack = 10.0;  // [m] a sample may land this far from the extrapolated track, plus speed x dt
+  double max_position = 1e7;     // [m] each position component within +-this (joints 1e-9 m apart in double)
 };
 
 struct OdometryResult
@@ -39,9 +39,9 @@ struct OdometryResult
   Eigen::Quaterniond q_WS = Eigen::Quaterniond::Identity();  // normalised
 };
 
-// Checks frame, finiteness, position within max_position, unit quaternion (norm within 0.01 of 1; normalised), order of stamps
-// against the track (no duplicates or reordering), stamps from the future or the far past, speed and
-// jumps; gives the tow point's position and velocity for an accepted sample. Never throws.
+// Checks frame, finiteness, position within max_position, unit quaternion (norm within 0.01 of 1; normalised), order of
+// stamps against the track (no duplicates or reordering), stamps from the future or the far past, speed and jumps;
+// gives the tow point's position and velocity for an accepted sample. Never throws.
 OdometryResult checkOdometry(const OdometryInput& in, const OdometryLimits& limits, const ShipTrack& track, double now);
 
 }  // namespace tow_sim

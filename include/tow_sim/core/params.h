@@ -20,14 +20,14 @@ enum class TangentialDragModel
 // One point of a current profile: the current at a depth.
 struct CurrentSample
 {
-  double depth = 0.0;                                   // [m] below the surface, 0 .. 12000
+  double depth = 0.0;                                    // [m] below the surface, 0 .. 12000
   Eigen::Vector3d velocity_W = Eigen::Vector3d::Zero();  // [m/s] world ENU, each component -20 .. 20
 };
 
 struct Environment
 {
-  double gravity = 9.81;                              // [m/s^2] g, 0 .. 100
-  double water_density = 1025.0;                      // [kg/m^3] rho, 0 (vacuum) .. 2000
+  double gravity = 9.81;                                // [m/s^2] g, 0 .. 100
+  double water_density = 1025.0;                        // [kg/m^3] rho, 0 (vacuum) .. 2000
   Eigen::Vector3d current_W = Eigen::Vector3d::Zero();  // [m/s] uniform current, world ENU, |.| <= 20
   // Depth-dependent part, added to current_W: linear between samples (depths strictly increasing),
   // the end values beyond them, nothing when empty. At most 10000 samples.
@@ -47,15 +47,15 @@ private:
 
 struct CableParams
 {
-  double length = 500.0;                  // [m] total cable length L, > 0 .. 1e5
-  int segments = 100;                     // [-] number of rigid segments nu, 1 .. 100000
-  double diameter = 0.02;                 // [m] D, > 0 .. 1
-  double mass_per_length = 1.0;           // [kg/m] in air, > 0 .. 1000
-  double normal_drag_coefficient = 1.2;   // [-] C_dn, >= 0 .. 10 (C2 = rho C_dn D / 2)
+  double length = 500.0;                      // [m] total cable length L, > 0 .. 1e5
+  int segments = 100;                         // [-] number of rigid segments nu, 1 .. 100000
+  double diameter = 0.02;                     // [m] D, > 0 .. 1
+  double mass_per_length = 1.0;               // [kg/m] in air, > 0 .. 1000
+  double normal_drag_coefficient = 1.2;       // [-] C_dn, >= 0 .. 10 (C2 = rho C_dn D / 2)
   double tangential_drag_coefficient = 0.01;  // [-] C_dt, >= 0 .. 1 (C1 = rho C_dt pi D / 2)
-  std::optional<double> c1;               // [N s^2/m^3] C1 given directly (overrides C_dt), >= 0
-  std::optional<double> c2;               // [N s^2/m^3] C2 given directly (overrides C_dn), >= 0
-  double added_mass_coefficient = 1.0;    // [-] C_a, >= 0 .. 10 (e = C_a rho pi D^2/4 d)
+  std::optional<double> c1;                   // [N s^2/m^3] C1 given directly (overrides C_dt), >= 0
+  std::optional<double> c2;                   // [N s^2/m^3] C2 given directly (overrides C_dn), >= 0
+  double added_mass_coefficient = 1.0;        // [-] C_a, >= 0 .. 10 (e = C_a rho pi D^2/4 d)
   TangentialDragModel tangential_drag_model = TangentialDragModel::kPode;
 
   double segmentLength() const { return length / segments; }
@@ -68,16 +68,16 @@ struct CableParams
 // Distances are measured from the bail (cable attachment) aft along the body axis.
 struct EndElementParams
 {
-  double length = 2.0;                  // [m] d_{nu+1}, bail to tail point, > 0 .. 100
-  double mass = 200.0;                  // [kg] in air, > 0 .. 1e6
-  double displaced_volume = 0.1414;     // [m^3] buoyancy rho g V acts at the CB, >= 0 .. 1e3
-  double cg_from_bail = 1.0;            // [m] d_{nu+2}, 0 .. length
-  double cb_from_bail = 1.0;            // [m] d_{nu+6}, 0 .. length
-  std::optional<double> transverse_inertia;  // [kg m^2] about the CG; default: thin rod over `length`
-  double diameter = 0.3;                // [m] for drag and added mass, > 0 .. 10
-  double normal_drag_coefficient = 1.0;      // [-] >= 0 .. 10
+  double length = 2.0;                        // [m] d_{nu+1}, bail to tail point, > 0 .. 100
+  double mass = 200.0;                        // [kg] in air, > 0 .. 1e6
+  double displaced_volume = 0.1414;           // [m^3] buoyancy rho g V acts at the CB, >= 0 .. 1e3
+  double cg_from_bail = 1.0;                  // [m] d_{nu+2}, 0 .. length
+  double cb_from_bail = 1.0;                  // [m] d_{nu+6}, 0 .. length
+  std::optional<double> transverse_inertia;   // [kg m^2] about the CG; default: thin rod over `length`
+  double diameter = 0.3;                      // [m] for drag and added mass, > 0 .. 10
+  double normal_drag_coefficient = 1.0;       // [-] >= 0 .. 10
   double tangential_drag_coefficient = 0.05;  // [-] >= 0 .. 10
-  double added_mass_coefficient = 1.0;       // [-] >= 0 .. 10
+  double added_mass_coefficient = 1.0;        // [-] >= 0 .. 10
 
   double transverseInertia() const;  // [kg m^2] about the CG
 };
@@ -91,10 +91,10 @@ enum class StepperType
 struct NumericsParams
 {
   StepperType stepper = StepperType::kDopri5;
-  double abs_tol = 1e-7;        // [-] absolute error tolerance (m, m/s), > 0 .. 1
-  double rel_tol = 1e-7;        // [-] relative error tolerance, > 0 .. 1
-  double max_step = 0.5;        // [s] largest adaptive step, > 0 .. 10
-  double fixed_step = 0.01;     // [s] step of the fixed-step stepper, > 0 .. 1
+  double abs_tol = 1e-7;                     // [-] absolute error tolerance (m, m/s), > 0 .. 1
+  double rel_tol = 1e-7;                     // [-] relative error tolerance, > 0 .. 1
+  double max_step = 0.5;                     // [s] largest adaptive step, > 0 .. 10
+  double fixed_step = 0.01;                  // [s] step of the fixed-step stepper, > 0 .. 1
   double tangential_smoothing_speed = 0.01;  // [m/s] Pode drag changes sign smoothly over this |u.s|, > 0 .. 1
 };
 
@@ -102,12 +102,12 @@ struct NumericsParams
 // split off or merged into it there so that it stays within its band).
 struct WinchParams
 {
-  bool enabled = false;            // off: the cable length is fixed and winch commands are refused
-  double min_length = 50.0;        // [m] least cable out, >= segment_min_fraction * L / nu
-  double max_length = 2000.0;      // [m] most cable out, >= min_length, <= 1e5
-  double max_rate = 2.0;           // [m/s] payout and haul-in rate limit, (0, 20]
-  double max_acceleration = 0.5;   // [m/s^2] limit on the rate's change, (0, 100]
-  double response_time = 1.0;      // [s] the rate follows the command with this lag (then the limits), [0.01, 100]
+  bool enabled = false;               // off: the cable length is fixed and winch commands are refused
+  double min_length = 50.0;           // [m] least cable out, >= segment_min_fraction * L / nu
+  double max_length = 2000.0;         // [m] most cable out, >= min_length, <= 1e5
+  double max_rate = 2.0;              // [m/s] payout and haul-in rate limit, (0, 20]
+  double max_acceleration = 0.5;      // [m/s^2] limit on the rate's change, (0, 100]
+  double response_time = 1.0;         // [s] the rate follows the command with this lag (then the limits), [0.01, 100]
   double segment_min_fraction = 0.5;  // [-] the first segment is merged into the next below this * L / nu, [0.1, 1)
   double segment_max_fraction = 1.5;  // [-] and split above this * L / nu, >= segment_min_fraction + 1, <= 10
 };

@@ -2,11 +2,11 @@
 // initial state and the run's timing, read from YAML and written back with every default filled in.
 #pragma once
 
+#include <yaml-cpp/yaml.h>
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <string>
 #include <vector>
-#include <Eigen/Geometry>
-#include <yaml-cpp/yaml.h>
 
 #include "tow_sim/core/config.h"
 #include "tow_sim/core/depth_autopilot.h"
@@ -38,25 +38,25 @@ struct Manoeuvre
 
 struct CommandEvent
 {
-  double t = 0.0;         // [s]
-  double rudder = 0.0;    // [rad]
-  double elevator = 0.0;  // [rad]
-  double thrust = 0.0;    // [N]
+  double t = 0.0;            // [s]
+  double rudder = 0.0;       // [rad]
+  double elevator = 0.0;     // [rad]
+  double thrust = 0.0;       // [N]
   double payout_rate = 0.0;  // [m/s] winch, positive pays out (needs winch.enabled)
 };
 
 // The depth autopilot in the loop (tow_sim_batch): its gains, its rate and a setpoint schedule.
 struct AutopilotSetpoint
 {
-  double t = 0.0;          // [s] from this time on
-  bool altitude = false;   // false: `value` is a depth [m, positive down]; true: an altitude above the seabed [m]
-  double value = 0.0;      // [m]
+  double t = 0.0;         // [s] from this time on
+  bool altitude = false;  // false: `value` is a depth [m, positive down]; true: an altitude above the seabed [m]
+  double value = 0.0;     // [m]
 };
 struct AutopilotScenario
 {
   bool enabled = false;
   DepthAutopilotParams params;
-  double rate = 10.0;  // [Hz] fin commands, [0.1, 1000]
+  double rate = 10.0;                        // [Hz] fin commands, [0.1, 1000]
   std::vector<AutopilotSetpoint> setpoints;  // sorted by time; none: hold the first depth
 };
 
@@ -64,7 +64,7 @@ struct Scenario
 {
   SimulationConfig config;
   Eigen::Vector3d tow_point_S = Eigen::Vector3d(-20.0, 0.0, 0.0);  // [m] ship frame (FLU)
-  Eigen::Vector2d start_position = Eigen::Vector2d::Zero();       // [m] ship, world
+  Eigen::Vector2d start_position = Eigen::Vector2d::Zero();        // [m] ship, world
   double start_heading = 0.0;                                      // [rad] ENU, from +x counter-clockwise
   std::vector<Manoeuvre> manoeuvres;                               // one after the other
   std::vector<CommandEvent> commands;                              // sorted by time
@@ -77,9 +77,9 @@ struct Scenario
   } start = Start::kEquilibrium;
   Eigen::Vector3d line_direction_S = Eigen::Vector3d(-1.0, 0.0, -0.5);  // ship frame, for `line`
   Eigen::Matrix3Xd points;                                              // joints x_2 .. x_{nu+2}, for `points`
-  double duration = 600.0;         // [s]
-  double output_interval = 1.0;    // [s] timeseries.csv
-  double shape_interval = 60.0;    // [s] shapes.csv
+  double duration = 600.0;                                              // [s]
+  double output_interval = 1.0;                                         // [s] timeseries.csv
+  double shape_interval = 60.0;                                         // [s] shapes.csv
 };
 
 // Reads a scenario; throws std::invalid_argument naming the key, the value and the allowed range.
@@ -92,10 +92,10 @@ YAML::Node toYaml(const Scenario& scenario);
 // point built from it) has continuous acceleration.
 struct ShipPath
 {
-  ShipTrack tow_point;                   // tow point, world
-  std::vector<double> t;                 // [s] sample times
-  std::vector<Eigen::Vector3d> pose;     // x [m], y [m], heading [rad] of the ship
-  std::vector<double> speed;             // [m/s]
+  ShipTrack tow_point;                // tow point, world
+  std::vector<double> t;              // [s] sample times
+  std::vector<Eigen::Vector3d> pose;  // x [m], y [m], heading [rad] of the ship
+  std::vector<double> speed;          // [m/s]
   // Ship pose at time t (linear between samples).
   Eigen::Vector3d poseAt(double time) const;
   double speedAt(double time) const;

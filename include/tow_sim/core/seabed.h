@@ -11,8 +11,8 @@ namespace tow_sim
 // beyond the grid.
 struct BathymetryGrid
 {
-  Eigen::Vector2d origin = Eigen::Vector2d::Zero();    // [m] world x, y of depth(0, 0)
-  Eigen::Vector2d spacing = Eigen::Vector2d::Ones();   // [m] dx, dy, > 0
+  Eigen::Vector2d origin = Eigen::Vector2d::Zero();   // [m] world x, y of depth(0, 0)
+  Eigen::Vector2d spacing = Eigen::Vector2d::Ones();  // [m] dx, dy, > 0
   Eigen::MatrixXd depth;  // [m] depth(j, i) at (origin.x + i dx, origin.y + j dy), rows along y, 0 .. 12000
 };
 
@@ -25,7 +25,7 @@ struct SeabedParams
     kGrid   // from `grid` (read from a file by the configuration loader)
   };
   Type type = Type::kNone;
-  double depth = 200.0;              // [m] flat bottom, (0, 12000]
+  double depth = 200.0;  // [m] flat bottom, (0, 12000]
   BathymetryGrid grid;
   std::string grid_file;             // where the grid came from (for messages and round trips)
   double stiffness = 1.0e4;          // [N/m per m of cable] cable: normal force per metre of penetration, (0, 1e8]

@@ -50,8 +50,8 @@ std::vector<bool> slackFlags(const Eigen::Matrix3Xd& joints, const Eigen::Matrix
 
 struct StepReport
 {
-  int steps = 0;           // accepted steps
-  int rejected = 0;        // steps the error control rejected
+  int steps = 0;                  // accepted steps
+  int rejected = 0;               // steps the error control rejected
   double max_length_error = 0.0;  // [-] largest relative length error left by a step, before projection
 };
 
@@ -76,8 +76,8 @@ public:
   // min_length and max_length.
   double setWinchCommand(double payout_rate);
   double winchCommand() const { return winch_command_; }
-  double cableLength() const;   // [m] cable out
-  double payoutRate() const;    // [m/s] its rate of change now
+  double cableLength() const;  // [m] cable out
+  double payoutRate() const;   // [m/s] its rate of change now
   const WinchParams& winch() const { return winch_; }
 
   double time() const { return t_; }
@@ -101,8 +101,8 @@ private:
   using StateVector = std::vector<double>;
   void rhs(const StateVector& y, StateVector& dydt, double t);
   double winchAcceleration(double length, double rate) const;  // [m/s^2] the winch's rate law
-  void syncWinch(const StateVector& y);  // the model's first segment from the winch entries of y
-  bool remesh(double t);                 // split or merge the first segment; true if the layout changed
+  void syncWinch(const StateVector& y);                        // the model's first segment from the winch entries of y
+  bool remesh(double t);  // split or merge the first segment; true if the layout changed
   void project(double t);
   void refreshOutputs();
   double lengthErrorOf(const StateVector& y, double t) const;

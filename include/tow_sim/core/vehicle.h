@@ -25,38 +25,38 @@ enum class AddedMassApproach
 
 struct ProlateSpheroid
 {
-  double length = 2.0;             // [m] 2a, > 0
-  double diameter = 0.3;           // [m] 2b, (0, length]
-  double center_from_bail = 0.2;   // [m] where its centre lies, aft of the bail
+  double length = 2.0;            // [m] 2a, > 0
+  double diameter = 0.3;          // [m] 2b, (0, length]
+  double center_from_bail = 0.2;  // [m] where its centre lies, aft of the bail
 };
 
 struct VehicleParams
 {
   // Geometry [m], from the bail.
-  double tail_from_bail = 1.2;           // d_{nu+1}, the tail point, (0, 100]
-  double cg_from_bail = 0.1;             // d_{nu+2}, [-nose, tail]
-  double horizontal_fin_from_bail = 1.0; // d_{nu+3}, [-nose, tail]
-  double vertical_fin_from_bail = 1.0;   // d_{nu+4}, [-nose, tail]
-  double nose_from_bail = 0.8;           // d_{nu+5}, measured forward, [0, 100]
-  double cb_from_bail = 0.08;            // d_{nu+6}, [-nose, tail]
+  double tail_from_bail = 1.2;            // d_{nu+1}, the tail point, (0, 100]
+  double cg_from_bail = 0.1;              // d_{nu+2}, [-nose, tail]
+  double horizontal_fin_from_bail = 1.0;  // d_{nu+3}, [-nose, tail]
+  double vertical_fin_from_bail = 1.0;    // d_{nu+4}, [-nose, tail]
+  double nose_from_bail = 0.8;            // d_{nu+5}, measured forward, [0, 100]
+  double cb_from_bail = 0.08;             // d_{nu+6}, [-nose, tail]
   // Mass properties.
-  double mass = 180.0;                   // [kg] in air, (0, 1e6]
-  double displaced_volume = 0.12;        // [m^3] buoyancy rho g V at the CB, [0, 1e3]
+  double mass = 180.0;             // [kg] in air, (0, 1e6]
+  double displaced_volume = 0.12;  // [m^3] buoyancy rho g V at the CB, [0, 1e3]
   Eigen::Matrix3d inertia_B = Eigen::Vector3d(2.0, 61.0, 61.0).asDiagonal();  // [kg m^2] about the CG, FLU
   // Velocity forces over the bail-tail length, as for a cable element (Appendix D). Hydrodynamic
   // constants (c1, c2, fins, Approach A e, a given Approach B matrix) hold in water; with
   // water_density = 0 (vacuum) every hydrodynamic load is off.
-  double c1 = 25.0;                      // [N s^2/m^3] tangential, Pode form, [0, 1e6]
-  double c2 = 250.0;                     // [N s^2/m^3] normal, [0, 1e6]
+  double c1 = 25.0;   // [N s^2/m^3] tangential, Pode form, [0, 1e6]
+  double c2 = 250.0;  // [N s^2/m^3] normal, [0, 1e6]
   // Added mass.
   AddedMassApproach added_mass_approach = AddedMassApproach::kA;
-  double added_mass_a = 145.0;           // [kg] e_{nu+1} of Approach A, [0, 1e6]
-  Matrix6d added_mass_b = Matrix6d::Zero();  // [kg, kg m, kg m^2] Approach B about the CG, FLU body axes
+  double added_mass_a = 145.0;                      // [kg] e_{nu+1} of Approach A, [0, 1e6]
+  Matrix6d added_mass_b = Matrix6d::Zero();         // [kg, kg m, kg m^2] Approach B about the CG, FLU body axes
   std::optional<ProlateSpheroid> prolate_spheroid;  // Approach B: fills added_mass_b from Lamb's k1, k2, k'
-  bool munk_terms = false;               // Approach B: keep Kirchhoff's velocity-product terms
+  bool munk_terms = false;                          // Approach B: keep Kirchhoff's velocity-product terms
   // Propulsion.
-  double max_thrust = 500.0;             // [N] commands saturate at +-this, [0, 1e6]
-  double thrust_offset_z = 0.0;          // [m] line of action above (+z_b) the axis, [-10, 10]
+  double max_thrust = 500.0;     // [N] commands saturate at +-this, [0, 1e6]
+  double thrust_offset_z = 0.0;  // [m] line of action above (+z_b) the axis, [-10, 10]
   // Fins: vertical pair (rudder, alpha) and horizontal pair (elevator, beta).
   FinPairParams rudder;
   FinPairParams elevator;
@@ -85,7 +85,7 @@ class AttitudeHold
 {
 public:
   explicit AttitudeHold(double hold_cone = 0.087) : cone_(hold_cone) {}  // [rad], 5 deg
-  Eigen::Quaterniond update(const Eigen::Vector3d& x_b_W);  // the body's forward axis, world
+  Eigen::Quaterniond update(const Eigen::Vector3d& x_b_W);               // the body's forward axis, world
   void reset() { has_heading_ = false; }
   double cone() const { return cone_; }
 
@@ -98,15 +98,15 @@ private:
 // What the vehicle reports at one instant.
 struct VehicleOutputs
 {
-  Eigen::Vector3d p_cg_W;             // [m] CG position, world
-  Eigen::Quaterniond q_WB;            // body (FLU, zero roll) to world
-  Eigen::Vector3d v_cg_W, v_cg_B;     // [m/s] CG velocity over ground, world and body axes
-  Eigen::Vector3d omega_W, omega_B;   // [rad/s] angular velocity s x ds/dt, world and body axes
-  double depth = 0.0;                 // [m] of the CG, -z
-  double pitch = 0.0;                 // [rad] REP-103 Euler pitch: rotation about y_b, positive nose DOWN
-  double yaw = 0.0;                   // [rad] heading of x_b from world x, counter-clockwise (ENU)
+  Eigen::Vector3d p_cg_W;               // [m] CG position, world
+  Eigen::Quaterniond q_WB;              // body (FLU, zero roll) to world
+  Eigen::Vector3d v_cg_W, v_cg_B;       // [m/s] CG velocity over ground, world and body axes
+  Eigen::Vector3d omega_W, omega_B;     // [rad/s] angular velocity s x ds/dt, world and body axes
+  double depth = 0.0;                   // [m] of the CG, -z
+  double pitch = 0.0;                   // [rad] REP-103 Euler pitch: rotation about y_b, positive nose DOWN
+  double yaw = 0.0;                     // [rad] heading of x_b from world x, counter-clockwise (ENU)
   double rudder = 0.0, elevator = 0.0;  // [rad] actual fin angles
-  double thrust = 0.0;                // [N] actual thrust
+  double thrust = 0.0;                  // [N] actual thrust
   FinPairLoads rudder_loads, elevator_loads;
 };
 
@@ -118,10 +118,7 @@ public:
 
   double length() const override { return p_.tail_from_bail; }
   // The hull's ends touch the seabed: the nose and the tail point.
-  std::vector<double> contactFractions() const override
-  {
-    return { -p_.nose_from_bail / p_.tail_from_bail, 1.0 };
-  }
+  std::vector<double> contactFractions() const override { return { -p_.nose_from_bail / p_.tail_from_bail, 1.0 }; }
   void dynamics(double t, const ElementKinematics& k, const Environment& env, BodyDynamics& out) const override;
 
   // Fin and thrust commands from time t on; values beyond the limits saturate. Returns true when

@@ -2,13 +2,13 @@
 // messages, and the tension colour scale.
 #pragma once
 
-#include <Eigen/Geometry>
 #include <geometry_msgs/Point.h>
 #include <geometry_msgs/Quaternion.h>
 #include <geometry_msgs/Vector3.h>
 #include <std_msgs/ColorRGBA.h>
 #include <xmlrpcpp/XmlRpcValue.h>
 #include <yaml-cpp/yaml.h>
+#include <Eigen/Geometry>
 
 namespace tow_sim
 {
