@@ -35,14 +35,15 @@ ChainState towedState(const ChainModel& model)
 void BM_RhsSweep(benchmark::State& state)
 {
   auto model = makeModel(static_cast<int>(state.range(0)));
-  ChainSolver solver(*model);
+  ChainSolver solver;
+  const ChainData data = model->initialData();
   const ChainState s = towedState(*model);
   ShipEndState ship;
   ship.v_W = Eigen::Vector3d(2.0, 0.0, 0.0);
   Eigen::Matrix3Xd a(3, model->jointCount()), tensions(3, model->jointCount());
   for (auto _ : state)
   {
-    solver.solve(0.0, ship, s.x, s.v, a, &tensions);
+    solver.solve(*model, data.geometry, data, 0.0, ship, s.x, s.v, a, &tensions);
     benchmark::DoNotOptimize(a.data());
   }
   state.SetComplexityN(state.range(0));

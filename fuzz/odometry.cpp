@@ -31,7 +31,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
 {
   tow_sim::ShipTrack track(1.0, 64);
   const tow_sim::OdometryLimits limits;
-  static tow_sim::Vehicle vehicle{ tow_sim::VehicleParams() };
+  static const tow_sim::Vehicle vehicle{ tow_sim::VehicleParams() };
+  tow_sim::Actuators actuators = vehicle.restingActuators(0.0);
   double now = 0.0;
   while (size >= 14 * sizeof(double))
   {
@@ -55,7 +56,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
     const double rudder = take(data, size), elevator = take(data, size);
     try
     {
-      vehicle.command(0.0, rudder, elevator, 0.0);
+      vehicle.command(actuators, 0.0, rudder, elevator, 0.0);
     }
     catch (const std::invalid_argument&)
     {
@@ -67,7 +68,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
   const tow_sim::ElementKinematics k = tow_sim::ElementKinematics::fromJoints(
       Eigen::Vector3d::Zero(), Eigen::Vector3d(-1.2, 0, 0), Eigen::Vector3d(2, 0, 0), Eigen::Vector3d(2, 0, 0));
   tow_sim::BodyDynamics body;
-  vehicle.dynamics(10.0, k, tow_sim::Environment(), body);
+  vehicle.dynamics(10.0, k, tow_sim::Environment(), actuators, body);
   if (!body.wrench.allFinite() || !body.mass.allFinite())
     std::abort();
   return 0;

@@ -98,12 +98,12 @@ int main(int argc, char** argv)
   try
   {
     auto vehicle = std::make_shared<Vehicle>(sc.config.vehicle, sc.config.numerics);
-    vehicle->resetActuators(0.0);
-    auto model = std::make_shared<ChainModel>(sc.config.cable, vehicle, sc.config.environment, sc.config.numerics);
-    const ShipPath path = buildShipPath(sc);
     std::shared_ptr<const Seabed> seabed;
     if (sc.config.seabed.type != SeabedParams::Type::kNone)
-      model->setSeabed(seabed = std::make_shared<Seabed>(sc.config.seabed));
+      seabed = std::make_shared<Seabed>(sc.config.seabed);
+    auto model =
+        std::make_shared<ChainModel>(sc.config.cable, vehicle, sc.config.environment, sc.config.numerics, seabed);
+    const ShipPath path = buildShipPath(sc);
     Simulator sim(
         model, [&path](double t) { return path.tow_point(t); }, sc.config.winch);
     const ShipEndState ship0 = path.tow_point(0.0);
@@ -112,13 +112,13 @@ int main(int argc, char** argv)
     while (next_command < sc.commands.size() && sc.commands[next_command].t <= 0.0)
     {
       const CommandEvent& c = sc.commands[next_command++];
-      vehicle->command(0.0, c.rudder, c.elevator, c.thrust);
+      sim.command(c.rudder, c.elevator, c.thrust);
       if (sc.config.winch.enabled)
         sim.setWinchCommand(c.payout_rate);
     }
     ChainState start;
     if (sc.start == Scenario::Start::kEquilibrium)
-      start = steadyTowEquilibrium(*model, 0.0, ship0.p_W, ship0.v_W).state;
+      start = steadyTowEquilibrium(*model, sim.data(), 0.0, ship0.p_W, ship0.v_W).state;
     else if (sc.start == Scenario::Start::kLine)
       start = straightChain(*model, ship0.p_W, R0 * sc.line_direction_S, ship0.v_W);
     else
@@ -157,7 +157,7 @@ int main(int argc, char** argv)
         {
           const CommandEvent& c = sc.commands[next_command++];
           if (!autopilot)
-            vehicle->command(c.t, c.rudder, c.elevator, c.thrust);
+            sim.command(c.rudder, c.elevator, c.thrust);
           if (sc.config.winch.enabled)
             sim.setWinchCommand(c.payout_rate);
         }
@@ -172,8 +172,8 @@ int main(int argc, char** argv)
         else
         {
           ++ticks;
-          const VehicleOutputs o =
-              vehicle->outputs(t_next, sim.elementKinematics(model->segments()), model->environment());
+          const VehicleOutputs o = vehicle->outputs(t_next, sim.elementKinematics(sim.geometry().segments),
+                                                    sim.data().environment, sim.data().actuators);
           VehicleMeasurement m;
           m.t = t_next;
           m.p_W = o.p_cg_W;
@@ -183,7 +183,7 @@ int main(int argc, char** argv)
           autopilot->addVehicle(m);
           autopilot->addShip(path.poseAt(t_next).head<2>());
           const AutopilotCommand c = autopilot->update(t_next);
-          vehicle->command(t_next, c.rudder, c.elevator, c.thrust);
+          sim.command(c.rudder, c.elevator, c.thrust);
         }
       }
       max_length_error = std::max(max_length_error, sim.advanceTo(t_target).max_length_error);
@@ -203,8 +203,9 @@ int main(int argc, char** argv)
     {
       const double t = std::min(sc.duration, i * sc.output_interval);
       runTo(t);
-      const int nu = model->segments();  // the winch may have changed it
-      const VehicleOutputs o = vehicle->outputs(t, sim.elementKinematics(nu), model->environment());
+      const int nu = sim.geometry().segments;  // the winch may have changed it
+      const VehicleOutputs o =
+          vehicle->outputs(t, sim.elementKinematics(nu), sim.data().environment, sim.data().actuators);
       const Eigen::Vector3d pose = path.poseAt(t);
       const Eigen::Vector3d heading(std::cos(pose.z()), std::sin(pose.z()), 0.0);
       const ShipEndState tow = sim.shipEnd();

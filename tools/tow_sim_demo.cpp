@@ -27,7 +27,6 @@ int main(int argc, char** argv)
     const Environment env;
     const NumericsParams numerics;
     auto vehicle = std::make_shared<Vehicle>(VehicleParams(), numerics);
-    vehicle->resetActuators(0.0);
     auto model = std::make_shared<ChainModel>(cable, vehicle, env, numerics);
     const Eigen::Vector3d ship_velocity(2.0, 0.0, 0.0);
     Simulator sim(model, constantVelocityShip(Eigen::Vector3d::Zero(), ship_velocity));
@@ -46,9 +45,10 @@ int main(int argc, char** argv)
     for (double t = 60.0; t <= duration + 1e-9; t += 60.0)
     {
       if (std::abs(t - (duration - 60.0)) < 1e-9)
-        vehicle->command(sim.time(), 0.0, 0.2, 0.0);
+        sim.command(0.0, 0.2, 0.0);
       steps += sim.advanceTo(t).steps;
-      const VehicleOutputs o = vehicle->outputs(sim.time(), sim.elementKinematics(nu), model->environment());
+      const VehicleOutputs o =
+          vehicle->outputs(sim.time(), sim.elementKinematics(nu), sim.data().environment, sim.data().actuators);
       const ShipEndState ship = sim.shipEnd();
       const Diversion div = lateralDiversion(o.p_cg_W, o.v_cg_W, ship, Eigen::Vector3d::UnitX());
       std::printf("%7.0f %10.2f %10.2f %11.2f %11.3f %11.1f %13.1f %9.2f\n", sim.time(), o.depth,

@@ -3,6 +3,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <stdexcept>
 
 namespace tow_sim
 {
@@ -102,8 +103,21 @@ RigidEndElement::RigidEndElement(const EndElementParams& params, const NumericsP
   validate(p_);
 }
 
+Actuators EndBody::restingActuators(double t) const
+{
+  Actuators a;
+  a.rudder.reset(t, 0.0);
+  a.elevator.reset(t, 0.0);
+  return a;
+}
+
+bool EndBody::command(Actuators&, double, double, double, double) const
+{
+  throw std::invalid_argument("command: this end body has no fins or propeller");
+}
+
 void RigidEndElement::dynamics(double /*t*/, const ElementKinematics& k, const Environment& env,
-                               BodyDynamics& out) const
+                               const Actuators& /*actuators*/, BodyDynamics& out) const
 {
   const Eigen::Matrix3d I3 = Eigen::Matrix3d::Identity();
   const Eigen::Matrix3d P = I3 - k.s * k.s.transpose();

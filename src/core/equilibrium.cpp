@@ -19,6 +19,7 @@ constexpr int kMaxPasses = 100;  // shooting passes in a current profile
 struct Balance
 {
   const ChainModel& model;
+  const ChainData& data;
   int element;
   double t;
   Eigen::Vector3d u;
@@ -29,10 +30,10 @@ struct Balance
   // T_fwd = T_aft - F: M - l s x (T_aft - gamma F). Also returns T_fwd.
   Eigen::Vector3d residual(const Eigen::Vector3d& s, Eigen::Vector3d* T_fwd = nullptr) const
   {
-    const double l = model.elementLength(element);
+    const double l = data.geometry.elementLength(element);
     const ElementKinematics k = ElementKinematics::fromJoints(x_aft - l * s, x_aft, u, u);
     BodyDynamics body;
-    model.elementDynamics(element, t, k, body, false);  // the steady tow clear of the seabed
+    model.elementDynamics(element, t, k, data.geometry, data, body, false);  // the steady tow clear of the seabed
     const Eigen::Vector3d F = body.wrench.head<3>(), M = body.wrench.tail<3>();
     if (T_fwd)
       *T_fwd = T_aft - F;
@@ -112,28 +113,34 @@ bool isStable(const Balance& b, const Eigen::Vector3d& s)
   return Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(S).eigenvalues().maxCoeff() <= 1e-9 * (1.0 + S.norm());
 }
 
-EquilibriumResult shoot(const ChainModel& model, double t, const Eigen::Vector3d& tow_point_W,
+EquilibriumResult shoot(const ChainModel& model, const ChainData& data, double t, const Eigen::Vector3d& tow_point_W,
                         const Eigen::Vector3d& ship_velocity_W, const Eigen::Matrix3Xd& joints, int iterations);
 }  // namespace
 
 EquilibriumResult steadyTowEquilibrium(const ChainModel& model, double t, const Eigen::Vector3d& tow_point_W,
                                        const Eigen::Vector3d& ship_velocity_W)
 {
+  return steadyTowEquilibrium(model, model.initialData(t), t, tow_point_W, ship_velocity_W);
+}
+
+EquilibriumResult steadyTowEquilibrium(const ChainModel& model, const ChainData& data, double t,
+                                       const Eigen::Vector3d& tow_point_W, const Eigen::Vector3d& ship_velocity_W)
+{
   if (!tow_point_W.allFinite() || !ship_velocity_W.allFinite())
     throw std::runtime_error("equilibrium: tow point and ship velocity must be finite");
-  const int n = model.elementCount();
+  const int n = data.geometry.elementCount();
   // With a current profile each element's balance depends on its depth, which is known only once the
   // shape hangs from the tow point: repeat the shooting with the depths of the previous pass until
   // they settle. A uniform current needs one pass.
-  const bool depth_dependent = !model.environment().current_profile.empty();
+  const bool depth_dependent = !data.environment.current_profile.empty();
   Eigen::Matrix3Xd joints = tow_point_W.replicate(1, n);
   EquilibriumResult result;
   for (int pass = 0; pass < (depth_dependent ? kMaxPasses : 1); ++pass)
   {
-    result = shoot(model, t, tow_point_W, ship_velocity_W, joints, result.iterations);
+    result = shoot(model, data, t, tow_point_W, ship_velocity_W, joints, result.iterations);
     const double moved = (result.state.x - joints).cwiseAbs().maxCoeff();
     joints = result.state.x;
-    if (moved < 1e-7 * (1.0 + model.totalLength()))
+    if (moved < 1e-7 * (1.0 + data.geometry.totalLength()))
       return result;
   }
   if (depth_dependent)
@@ -144,26 +151,26 @@ EquilibriumResult steadyTowEquilibrium(const ChainModel& model, double t, const 
 
 namespace
 {
-EquilibriumResult shoot(const ChainModel& model, double t, const Eigen::Vector3d& tow_point_W,
+EquilibriumResult shoot(const ChainModel& model, const ChainData& data, double t, const Eigen::Vector3d& tow_point_W,
                         const Eigen::Vector3d& ship_velocity_W, const Eigen::Matrix3Xd& joints, int iterations)
 {
-  const int n = model.elementCount();
+  const int n = data.geometry.elementCount();
   EquilibriumResult result;
   result.iterations = iterations;
   result.tensions.resize(3, n);
   Eigen::Matrix3Xd axes(3, n);
   // The first guess for the vehicle: trailing the flow past it, slightly down.
-  const Eigen::Vector3d flow = ship_velocity_W - model.environment().currentAt(joints.col(n - 1).z());
+  const Eigen::Vector3d flow = ship_velocity_W - data.environment.currentAt(joints.col(n - 1).z());
   Eigen::Vector3d guess =
       flow.norm() > 1e-6 ? Eigen::Vector3d(-flow.normalized()) : Eigen::Vector3d(-Eigen::Vector3d::UnitZ());
   guess = (guess - 0.2 * Eigen::Vector3d::UnitZ()).normalized();
   Eigen::Vector3d T_aft = Eigen::Vector3d::Zero();
   for (int e = n - 1; e >= 0; --e)
   {
-    const Balance b{ model, e, t, ship_velocity_W, T_aft, joints.col(e) };
+    const Balance b{ model, data, e, t, ship_velocity_W, T_aft, joints.col(e) };
     Eigen::Vector3d F_guess;
     b.residual(guess, &F_guess);
-    const double scale = 1.0 + model.elementLength(e) * (T_aft.norm() + F_guess.norm());
+    const double scale = 1.0 + data.geometry.elementLength(e) * (T_aft.norm() + F_guess.norm());
     // Candidates: the guess, the guess tipped, and the reversed guess; the first stable balance wins.
     const Eigen::Vector3d candidates[] = { guess, (guess - 0.5 * Eigen::Vector3d::UnitZ()).normalized(),
                                            (Eigen::AngleAxisd(0.3, guess.unitOrthogonal()) * guess).normalized(),
@@ -185,7 +192,7 @@ EquilibriumResult shoot(const ChainModel& model, double t, const Eigen::Vector3d
       std::ostringstream os;
       os << "equilibrium: no stable direction balances element " << e + 1 << " of " << n
          << (e == n - 1 ? " (the vehicle)" : "") << " at ship velocity (" << ship_velocity_W.transpose()
-         << ") m/s and current (" << model.environment().currentAt(joints.col(e).z()).transpose()
+         << ") m/s and current (" << data.environment.currentAt(joints.col(e).z()).transpose()
          << ") m/s; moment residual " << residual << " N m";
       throw std::runtime_error(os.str());
     }
@@ -203,7 +210,7 @@ EquilibriumResult shoot(const ChainModel& model, double t, const Eigen::Vector3d
   Eigen::Vector3d p = tow_point_W;
   for (int e = 0; e < n; ++e)
   {
-    p += model.elementLength(e) * axes.col(e);
+    p += data.geometry.elementLength(e) * axes.col(e);
     result.state.x.col(e) = p;
     result.state.v.col(e) = ship_velocity_W;
   }

@@ -36,10 +36,10 @@ ShipMotion constantVelocityShip(const Eigen::Vector3d& p0_W, const Eigen::Vector
   };
 }
 
-ChainState straightChain(const ChainModel& model, const Eigen::Vector3d& tow_point_W,
+ChainState straightChain(const ChainGeometry& geometry, const Eigen::Vector3d& tow_point_W,
                          const Eigen::Vector3d& direction_W, const Eigen::Vector3d& velocity_W)
 {
-  const int n = model.jointCount();
+  const int n = geometry.jointCount();
   ChainState state;
   state.x.resize(3, n);
   state.v.resize(3, n);
@@ -47,22 +47,29 @@ ChainState straightChain(const ChainModel& model, const Eigen::Vector3d& tow_poi
   Eigen::Vector3d p = tow_point_W;
   for (int e = 0; e < n; ++e)
   {
-    p += model.elementLength(e) * dir;
+    p += geometry.elementLength(e) * dir;
     state.x.col(e) = p;
     state.v.col(e) = velocity_W;
   }
   return state;
 }
 
-double maxRelativeLengthError(const ChainModel& model, const Eigen::Vector3d& tow_point_W, const ChainState& state)
+ChainState straightChain(const ChainModel& model, const Eigen::Vector3d& tow_point_W,
+                         const Eigen::Vector3d& direction_W, const Eigen::Vector3d& velocity_W)
+{
+  return straightChain(model.initialGeometry(), tow_point_W, direction_W, velocity_W);
+}
+
+double maxRelativeLengthError(const ChainGeometry& geometry, const Eigen::Vector3d& tow_point_W,
+                              const Eigen::Ref<const Eigen::Matrix3Xd>& x)
 {
   double worst = 0.0;
   Eigen::Vector3d x_f = tow_point_W;
-  for (int e = 0; e < model.elementCount(); ++e)
+  for (int e = 0; e < geometry.elementCount(); ++e)
   {
-    const double d = model.elementLength(e);
-    worst = std::max(worst, std::abs((state.x.col(e) - x_f).norm() / d - 1.0));
-    x_f = state.x.col(e);
+    const double d = geometry.elementLength(e);
+    worst = std::max(worst, std::abs((x.col(e) - x_f).norm() / d - 1.0));
+    x_f = x.col(e);
   }
   return worst;
 }
@@ -85,19 +92,52 @@ std::vector<bool> slackFlags(const Eigen::Matrix3Xd& joints, const Eigen::Matrix
   return slack;
 }
 
-Simulator::Simulator(std::shared_ptr<ChainModel> model, ShipMotion ship, const WinchParams& winch)
-    : model_(std::move(model)), ship_(std::move(ship)), solver_(*model_), winch_(winch)
+struct Simulator::Steppers
+{
+  using Dopri5 = odeint::runge_kutta_dopri5<StateVector>;
+  explicit Steppers(const NumericsParams& num) : controlled(odeint::make_controlled(num.abs_tol, num.rel_tol, Dopri5()))
+  {
+  }
+  odeint::controlled_runge_kutta<Dopri5> controlled;
+  odeint::runge_kutta4<StateVector> rk4;
+};
+
+Simulator::Simulator(std::shared_ptr<const ChainModel> model, ShipMotion ship, const WinchParams& winch)
+    : model_(std::move(model)), ship_(std::move(ship)), winch_(winch)
 {
   if (!ship_)
     throw std::invalid_argument("Simulator: no ship motion given");
   validate(winch_, model_->cable());
-  const int n = model_->jointCount();
-  y_.assign(6 * n + 2, 0.0);
-  dydt_.assign(6 * n + 2, 0.0);
-  y_[6 * n] = model_->cableLength();
-  tensions_.setZero(3, n);
-  accelerations_.setZero(3, n);
+  data_ = model_->initialData(0.0);
+  const StateLayout L = layout();
+  y_.assign(L.size(), 0.0);
+  dydt_.assign(L.size(), 0.0);
+  L.cableOut(y_) = model_->cableLength();
+  tensions_.setZero(3, L.joints);
+  accelerations_.setZero(3, L.joints);
   dt_ = std::min(model_->numerics().max_step, 0.01);
+}
+
+Simulator::~Simulator() = default;
+
+bool Simulator::command(double rudder, double elevator, double thrust)
+{
+  return model_->endBody().command(data_.actuators, t_, rudder, elevator, thrust);
+}
+
+void Simulator::resetActuators(double t)
+{
+  data_.actuators = model_->endBody().restingActuators(t);
+}
+
+void Simulator::setCurrent(const Eigen::Vector3d& current_W)
+{
+  tow_sim::setCurrent(data_, current_W);
+}
+
+void Simulator::setCurrentProfile(const std::vector<CurrentSample>& profile)
+{
+  tow_sim::setCurrentProfile(data_, profile);
 }
 
 double Simulator::setWinchCommand(double payout_rate)
@@ -106,17 +146,17 @@ double Simulator::setWinchCommand(double payout_rate)
     throw std::invalid_argument("winch command: the winch is disabled (winch.enabled: false)");
   if (!std::isfinite(payout_rate))
     throw std::invalid_argument("winch command: the payout rate must be a finite number [m/s]");
-  winch_command_ = std::clamp(payout_rate, -winch_.max_rate, winch_.max_rate);
-  return winch_command_;
+  data_.winch_command = std::clamp(payout_rate, -winch_.max_rate, winch_.max_rate);
+  return data_.winch_command;
 }
 
 double Simulator::cableLength() const
 {
-  return y_[6 * model_->jointCount()];
+  return layout().cableOut(y_);
 }
 double Simulator::payoutRate() const
 {
-  return y_[6 * model_->jointCount() + 1];
+  return layout().payoutRate(y_);
 }
 
 double Simulator::winchAcceleration(double length, double rate) const
@@ -131,156 +171,174 @@ double Simulator::winchAcceleration(double length, double rate) const
   const double a = winch_.max_acceleration, tau = winch_.response_time;
   const double k = 0.25 / tau;
   const double to_max = std::max(0.0, winch_.max_length - length), to_min = std::max(0.0, length - winch_.min_length);
-  double target = std::clamp(winch_command_, -winch_.max_rate, winch_.max_rate);
+  double target = std::clamp(data_.winch_command, -winch_.max_rate, winch_.max_rate);
   target = std::min({ target, std::sqrt(a * to_max), k * to_max });
   target = std::max({ target, -std::sqrt(a * to_min), -k * to_min });
   return std::clamp((target - rate) / tau, -a, a);
 }
 
-void Simulator::syncWinch(const StateVector& y)
+ChainGeometry Simulator::geometryOf(const StateVector& y) const
 {
+  ChainGeometry g = data_.geometry;
   if (!winch_.enabled)
-    return;
-  const int n = model_->jointCount();
-  const double length = y[6 * n], rate = y[6 * n + 1];
-  const double first = length - (model_->segments() - 1) * model_->nominalSegmentLength();
-  model_->setFirstSegment(std::max(first, 1e-9), rate, winchAcceleration(length, rate));
+    return g;
+  const StateLayout L{ g.jointCount() };
+  const double length = L.cableOut(y), rate = L.payoutRate(y);
+  g.first_length = std::max(length - (g.segments - 1) * g.nominal_length, 1e-9);
+  g.first_rate = rate;
+  g.first_acceleration = winchAcceleration(length, rate);
+  return g;
 }
 
 bool Simulator::remesh(double t)
 {
   if (!winch_.enabled)
     return false;
-  const double d = model_->nominalSegmentLength();
   // One pass in one direction: split while the first segment is above the band, or merge while it is
-  // below. The first segment's length is carried from step to step (not recomputed from the cable out,
+  // below. The first segment's length is carried from split to split (not recomputed from the cable out,
   // whose rounding could put it on both sides of the band at once), and a call never turns back.
   // A relative margin of 1e-6 on both edges: with max >= min + 1 a split then lands strictly above the
   // merge edge and a merge strictly below the split edge, whatever the rounding.
+  const double d = data_.geometry.nominal_length;
   const double split_above = winch_.segment_max_fraction * d * (1.0 + 1e-6);
   const double merge_below = winch_.segment_min_fraction * d * (1.0 - 1e-6);
-  double first = model_->firstLength();
-  const bool split = first > split_above;
-  const bool merge = !split && first < merge_below && model_->segments() >= 2;
+  const bool split = data_.geometry.first_length > split_above;
+  const bool merge = !split && data_.geometry.first_length < merge_below && data_.geometry.segments >= 2;
   if (!split && !merge)
     return false;
-  const ShipEndState ship = ship_(t);
   for (int pass = 0; pass < 100000; ++pass)
   {
-    const int n = model_->jointCount();
-    const int nu = model_->segments();
-    const double length = y_[6 * n], rate = y_[6 * n + 1];
-    Eigen::Map<Eigen::Matrix3Xd> x(y_.data(), 3, n), v(y_.data() + 3 * n, 3, n);
-    StateVector next;
-    if (split && first > split_above)
-    {
-      // A new joint on the first segment, d from its aft end. It moves as a point of the rigid segment
-      // across the flow and with the aft joint along it (that part keeps its length d).
-      const Eigen::Vector3d axis = x.col(0) - ship.p_W;
-      const Eigen::Vector3d s = axis.normalized();
-      const double eta = (first - d) / first;
-      Eigen::Vector3d w = ship.v_W + eta * (v.col(0) - ship.v_W);
-      w += s.dot(v.col(0) - w) * s;
-      next.resize(6 * (n + 1) + 2);
-      Eigen::Map<Eigen::Matrix3Xd> nx(next.data(), 3, n + 1), nv(next.data() + 3 * (n + 1), 3, n + 1);
-      nx.col(0) = ship.p_W + eta * axis;
-      nv.col(0) = w;
-      nx.rightCols(n) = x;
-      nv.rightCols(n) = v;
-      first -= d;
-      model_->setLayout(nu + 1, first);
-    }
-    else if (merge && first < merge_below && nu >= 2)
-    {
-      // Merge the first segment into the second: drop joint x_2. The new first segment runs straight
-      // from the tow point to x_3; its length is the sum, so mass is kept; the projection then
-      // restores that length (a shift of second order in the kink at x_2).
-      next.resize(6 * (n - 1) + 2);
-      Eigen::Map<Eigen::Matrix3Xd> nx(next.data(), 3, n - 1), nv(next.data() + 3 * (n - 1), 3, n - 1);
-      nx = x.rightCols(n - 1);
-      nv = v.rightCols(n - 1);
-      first += d;
-      model_->setLayout(nu - 1, first);
-    }
+    if (split && data_.geometry.first_length > split_above)
+      splitFirstSegment(t);
+    else if (merge && data_.geometry.first_length < merge_below && data_.geometry.segments >= 2)
+      mergeFirstSegment();
     else
-    {
       break;
-    }
-    const int m = model_->jointCount();
-    next[6 * m] = length;
-    next[6 * m + 1] = rate;
-    y_.swap(next);
-    dydt_.assign(y_.size(), 0.0);
   }
   return true;
 }
 
+void Simulator::splitFirstSegment(double t)
+{
+  // A new joint on the first segment, d from its aft end. It moves as a point of the rigid segment across
+  // the flow and with the aft joint along it (that part keeps its length d).
+  const ShipEndState ship = ship_(t);
+  const StateLayout L = layout(), next_layout{ L.joints + 1 };
+  const double d = data_.geometry.nominal_length, first = data_.geometry.first_length;
+  const auto x = L.positions(y_);
+  const auto v = L.velocities(y_);
+  const Eigen::Vector3d axis = x.col(0) - ship.p_W;
+  const Eigen::Vector3d s = axis.normalized();
+  const double eta = (first - d) / first;
+  Eigen::Vector3d w = ship.v_W + eta * (v.col(0) - ship.v_W);
+  w += s.dot(v.col(0) - w) * s;
+  StateVector next(next_layout.size());
+  auto nx = next_layout.positions(next);
+  auto nv = next_layout.velocities(next);
+  nx.col(0) = ship.p_W + eta * axis;
+  nv.col(0) = w;
+  nx.rightCols(L.joints) = x;
+  nv.rightCols(L.joints) = v;
+  next_layout.cableOut(next) = L.cableOut(y_);
+  next_layout.payoutRate(next) = L.payoutRate(y_);
+  data_.geometry.segments += 1;
+  data_.geometry.first_length = first - d;
+  y_.swap(next);
+  dydt_.assign(y_.size(), 0.0);
+}
+
+void Simulator::mergeFirstSegment()
+{
+  // Merge the first segment into the second: drop joint x_2. The new first segment runs straight from the
+  // tow point to x_3; its length is the sum, so mass is kept; the projection then restores that length (a
+  // shift of second order in the kink at x_2).
+  const StateLayout L = layout(), next_layout{ L.joints - 1 };
+  StateVector next(next_layout.size());
+  next_layout.positions(next) = L.positions(y_).rightCols(L.joints - 1);
+  next_layout.velocities(next) = L.velocities(y_).rightCols(L.joints - 1);
+  next_layout.cableOut(next) = L.cableOut(y_);
+  next_layout.payoutRate(next) = L.payoutRate(y_);
+  data_.geometry.segments -= 1;
+  data_.geometry.first_length += data_.geometry.nominal_length;
+  y_.swap(next);
+  dydt_.assign(y_.size(), 0.0);
+}
+
+void Simulator::restoreLayout(int segments, double cable_out)
+{
+  const double first = cable_out - (segments - 1) * data_.geometry.nominal_length;
+  if (segments < 1 || !std::isfinite(cable_out) || !(first > 0.0) ||
+      (winch_.enabled && (cable_out < winch_.min_length || cable_out > winch_.max_length)) ||
+      (!winch_.enabled && segments != model_->segments()))
+    throw std::invalid_argument("restoreLayout: " + std::to_string(segments) + " segments and " +
+                                std::to_string(cable_out) + " m of cable out are not a layout of this cable");
+  data_.geometry.segments = segments;
+  y_.assign(layout().size(), 0.0);
+  layout().cableOut(y_) = cable_out;
+  data_.geometry.first_length = winch_.enabled ? first : data_.geometry.nominal_length;
+}
+
 void Simulator::reset(double t, const ChainState& state)
 {
-  const int n = model_->jointCount();
-  if (state.x.cols() != n || state.v.cols() != n)
+  const StateLayout L = layout();
+  if (state.x.cols() != L.joints || state.v.cols() != L.joints)
   {
     std::ostringstream os;
-    os << "initial state: expected " << n << " joints (segments + 1), got " << state.x.cols() << " positions and "
-       << state.v.cols() << " velocities";
+    os << "initial state: expected " << L.joints << " joints (segments + 1), got " << state.x.cols()
+       << " positions and " << state.v.cols() << " velocities";
     throw std::invalid_argument(os.str());
   }
   if (!std::isfinite(t) || !state.x.allFinite() || !state.v.allFinite())
     throw std::invalid_argument("initial state: time, positions and velocities must be finite");
   t_ = t;
-  y_.resize(6 * n + 2);
-  dydt_.resize(6 * n + 2);
-  // The winch restarts from rest with its command cleared, as the vehicle's actuators do; the cable out and
-  // the layout are kept.
-  y_[6 * n + 1] = 0.0;
-  winch_command_ = 0.0;
-  std::copy(state.x.data(), state.x.data() + 3 * n, y_.begin());
-  std::copy(state.v.data(), state.v.data() + 3 * n, y_.begin() + 3 * n);
+  y_.resize(L.size());
+  dydt_.resize(L.size());
+  // The winch restarts from rest with its command cleared; the cable out and the layout are kept.
+  L.payoutRate(y_) = 0.0;
+  data_.winch_command = 0.0;
+  L.positions(y_) = state.x;
+  L.velocities(y_) = state.v;
   project(t_);
   refreshOutputs();
   dt_ = std::min(model_->numerics().max_step, 0.01);
 }
 
-void Simulator::rhs(const StateVector& y, StateVector& dydt, double t)
+void Simulator::derivative(double t, const StateVector& y, StateVector& dydt) const
 {
-  const int n = model_->jointCount();
-  Eigen::Map<const Eigen::Matrix3Xd> x(y.data(), 3, n);
-  Eigen::Map<const Eigen::Matrix3Xd> v(y.data() + 3 * n, 3, n);
-  Eigen::Map<Eigen::Matrix3Xd> x_dot(dydt.data(), 3, n);
-  Eigen::Map<Eigen::Matrix3Xd> a(dydt.data() + 3 * n, 3, n);
-  x_dot = v;
-  syncWinch(y);
-  solver_.solve(t, ship_(t), x, v, a);
-  dydt[6 * n] = winch_.enabled ? y[6 * n + 1] : 0.0;
-  dydt[6 * n + 1] = winch_.enabled ? model_->firstAcceleration() : 0.0;
+  const ChainGeometry geometry = geometryOf(y);
+  const StateLayout L{ geometry.jointCount() };
+  L.positions(dydt) = L.velocities(y);
+  Eigen::Map<Eigen::Matrix3Xd> a = L.velocities(dydt);
+  solver_.solve(*model_, geometry, data_, t, ship_(t), L.positions(y), L.velocities(y), a);
+  L.cableOut(dydt) = winch_.enabled ? L.payoutRate(y) : 0.0;
+  L.payoutRate(dydt) = winch_.enabled ? geometry.first_acceleration : 0.0;
 }
 
 void Simulator::refreshOutputs()
 {
-  const int n = model_->jointCount();
-  syncWinch(y_);
-  tensions_.resize(3, n);
-  accelerations_.resize(3, n);
-  dydt_.resize(6 * n + 2);
-  Eigen::Map<const Eigen::Matrix3Xd> x(y_.data(), 3, n);
-  Eigen::Map<const Eigen::Matrix3Xd> v(y_.data() + 3 * n, 3, n);
-  solver_.solve(t_, ship_(t_), x, v, accelerations_, &tensions_);
-  Eigen::Map<Eigen::Matrix3Xd>(dydt_.data(), 3, n) = v;
-  Eigen::Map<Eigen::Matrix3Xd>(dydt_.data() + 3 * n, 3, n) = accelerations_;
-  dydt_[6 * n] = winch_.enabled ? y_[6 * n + 1] : 0.0;
-  dydt_[6 * n + 1] = winch_.enabled ? model_->firstAcceleration() : 0.0;
+  const StateLayout L = layout();
+  data_.geometry = geometryOf(y_);
+  tensions_.resize(3, L.joints);
+  accelerations_.resize(3, L.joints);
+  dydt_.resize(L.size());
+  solver_.solve(*model_, data_.geometry, data_, t_, ship_(t_), L.positions(y_), L.velocities(y_), accelerations_,
+                &tensions_);
+  L.positions(dydt_) = L.velocities(y_);
+  L.velocities(dydt_) = accelerations_;
+  L.cableOut(dydt_) = winch_.enabled ? L.payoutRate(y_) : 0.0;
+  L.payoutRate(dydt_) = winch_.enabled ? data_.geometry.first_acceleration : 0.0;
 }
 
 void Simulator::project(double t)
 {
   // Sequentially from the ship: restore each element's length along its current direction, then
   // remove the relative velocity along the element (s.(v_a - v_f) = 0).
-  const int n = model_->jointCount();
+  const StateLayout L = layout();
   if (winch_.enabled)
   {
     // The winch stops at its limits (its rate law brakes toward them; this removes the last overshoot).
-    double& length = y_[6 * n];
-    double& rate = y_[6 * n + 1];
+    double& length = L.cableOut(y_);
+    double& rate = L.payoutRate(y_);
     if (length >= winch_.max_length)
       rate = std::min(rate, 0.0);
     if (length <= winch_.min_length)
@@ -288,43 +346,32 @@ void Simulator::project(double t)
     length = std::clamp(length, winch_.min_length, winch_.max_length);
     rate = std::clamp(rate, -winch_.max_rate, winch_.max_rate);
   }
-  syncWinch(y_);
-  Eigen::Map<Eigen::Matrix3Xd> x(y_.data(), 3, n);
-  Eigen::Map<Eigen::Matrix3Xd> v(y_.data() + 3 * n, 3, n);
+  data_.geometry = geometryOf(y_);
+  auto x = L.positions(y_);
+  auto v = L.velocities(y_);
   const ShipEndState ship = ship_(t);
   Eigen::Vector3d x_f = ship.p_W;
   Eigen::Vector3d v_f = ship.v_W;
-  for (int e = 0; e < n; ++e)
+  for (int e = 0; e < L.joints; ++e)
   {
     const Eigen::Vector3d s = (x.col(e) - x_f).normalized();
-    x.col(e) = x_f + model_->elementLength(e) * s;
+    x.col(e) = x_f + data_.geometry.elementLength(e) * s;
     // Relative velocity along the element: none, but the winch's rate on the first segment.
-    const double along = e == 0 ? model_->firstRate() : 0.0;
+    const double along = e == 0 ? data_.geometry.first_rate : 0.0;
     v.col(e) -= (s.dot(v.col(e) - v_f) - along) * s;
     x_f = x.col(e);
     v_f = v.col(e);
   }
 }
 
-double Simulator::lengthErrorOf(const StateVector& y, double t) const
-{
-  const int n = model_->jointCount();
-  ChainState s;
-  s.x = Eigen::Map<const Eigen::Matrix3Xd>(y.data(), 3, n);
-  s.v.resize(3, 0);
-  return maxRelativeLengthError(*model_, ship_(t).p_W, s);
-}
-
 double Simulator::lengthError() const
 {
-  return lengthErrorOf(y_, t_);
+  return maxRelativeLengthError(data_.geometry, ship_(t_).p_W, layout().positions(y_));
 }
 
 double Simulator::largestRelativeSpeed(double t) const
 {
-  const int n = model_->jointCount();
-  Eigen::Map<const Eigen::Matrix3Xd> v(y_.data() + 3 * n, 3, n);
-  return (v.colwise() - ship_(t).v_W).colwise().norm().maxCoeff();
+  return (layout().velocities(y_).colwise() - ship_(t).v_W).colwise().norm().maxCoeff();
 }
 
 StepReport Simulator::advanceTo(double t_end)
@@ -335,88 +382,81 @@ StepReport Simulator::advanceTo(double t_end)
     os << "advanceTo: target time " << t_end << " s is before the current time " << t_ << " s";
     throw std::invalid_argument(os.str());
   }
-  const NumericsParams& num = model_->numerics();
-  auto system = [this](const StateVector& y, StateVector& dydt, double t) { rhs(y, dydt, t); };
-  auto controlled = odeint::make_controlled(num.abs_tol, num.rel_tol, odeint::runge_kutta_dopri5<StateVector>());
-  odeint::runge_kutta4<StateVector> rk4;
-
+  steppers_ = std::make_unique<Steppers>(model_->numerics());
   // The commands, the current or the thrust may have changed since the last step: the derivative the
   // first step starts from (k1, first-same-as-last) is taken afresh.
   refreshOutputs();
   // While the winch runs, a step shortens the first segment by at most half the band's lower edge (the
   // rate stays within max_rate), so it never collapses before the merge that follows the step.
   const double winch_step = winch_.enabled
-                                ? 0.5 * winch_.segment_min_fraction * model_->nominalSegmentLength() / winch_.max_rate
+                                ? 0.5 * winch_.segment_min_fraction * data_.geometry.nominal_length / winch_.max_rate
                                 : std::numeric_limits<double>::infinity();
   StepReport report;
-  StateVector y_prev;
   while (t_end - t_ > 1e-12 * std::max(1.0, std::abs(t_end)))
-  {
-    y_prev = y_;
-    const double t_prev = t_;
-    if (num.stepper == StepperType::kRk4)
-    {
-      const double h = std::min({ num.fixed_step, winch_step, t_end - t_ });
-      rk4.do_step(system, y_, dydt_, t_, h);
-      t_ = h == t_end - t_ ? t_end : t_ + h;
-    }
-    else
-    {
-      const double remaining = t_end - t_;
-      const bool clamped = dt_ >= remaining;
-      double h = std::min({ dt_, remaining, num.max_step, winch_step });
-      // dopri5 is first-same-as-last: dydt_ holds f(y_) and is advanced with the step.
-      if (controlled.try_step(system, y_, dydt_, t_, h) == odeint::fail)
-      {
-        ++report.rejected;
-        dt_ = h;
-        if (dt_ < kMinStep)
-        {
-          refreshOutputs();  // the rejected stages left the winch's first segment at a trial value
-          throw std::runtime_error(
-              "integration failed: the adaptive step fell below 1e-10 s at t = " + std::to_string(t_) + " s");
-        }
-        continue;
-      }
-      if (!clamped || h > dt_)
-        dt_ = std::min(h, num.max_step);
-      if (clamped && remaining - (t_ - t_prev) < 1e-12)
-        t_ = t_end;
-    }
-    const bool finite = allFinite(y_);
-    const double speed = finite ? largestRelativeSpeed(t_) : 0.0;
-    if (!finite || speed > kMaxRelativeSpeed)
-    {
-      y_ = y_prev;
-      t_ = t_prev;
-      refreshOutputs();
-      throw std::runtime_error(finite ? "integration ran away: a joint moves at " + std::to_string(speed) +
-                                            " m/s relative to the tow point at t = " + std::to_string(t_) + " s"
-                                      : "integration diverged: non-finite state at t = " + std::to_string(t_) + " s");
-    }
-    ++report.steps;
-    syncWinch(y_);
-    report.max_length_error = std::max(report.max_length_error, lengthErrorOf(y_, t_));
-    if (remesh(t_))
-    {
-      // New state size: fresh steppers (odeint sizes its buffers once).
-      controlled = odeint::make_controlled(num.abs_tol, num.rel_tol, odeint::runge_kutta_dopri5<StateVector>());
-      rk4 = odeint::runge_kutta4<StateVector>();
-    }
-    project(t_);
-    refreshOutputs();
-  }
+    stepOnce(t_end, winch_step, report);
   return report;
+}
+
+void Simulator::stepOnce(double t_end, double winch_step, StepReport& report)
+{
+  const NumericsParams& num = model_->numerics();
+  auto system = [this](const StateVector& y, StateVector& dydt, double t) { derivative(t, y, dydt); };
+  const StateVector y_prev = y_;
+  const double t_prev = t_;
+  if (num.stepper == StepperType::kRk4)
+  {
+    const double h = std::min({ num.fixed_step, winch_step, t_end - t_ });
+    steppers_->rk4.do_step(system, y_, dydt_, t_, h);
+    t_ = h == t_end - t_ ? t_end : t_ + h;
+  }
+  else
+  {
+    const double remaining = t_end - t_;
+    const bool clamped = dt_ >= remaining;
+    double h = std::min({ dt_, remaining, num.max_step, winch_step });
+    // dopri5 is first-same-as-last: dydt_ holds f(y_) and is advanced with the step.
+    if (steppers_->controlled.try_step(system, y_, dydt_, t_, h) == odeint::fail)
+    {
+      ++report.rejected;
+      dt_ = h;
+      if (dt_ < kMinStep)
+        throw std::runtime_error(
+            "integration failed: the adaptive step fell below 1e-10 s at t = " + std::to_string(t_) + " s");
+      return;
+    }
+    if (!clamped || h > dt_)
+      dt_ = std::min(h, num.max_step);
+    if (clamped && remaining - (t_ - t_prev) < 1e-12)
+      t_ = t_end;
+  }
+  const bool finite = allFinite(y_);
+  const double speed = finite ? largestRelativeSpeed(t_) : 0.0;
+  if (!finite || speed > kMaxRelativeSpeed)
+  {
+    y_ = y_prev;
+    t_ = t_prev;
+    refreshOutputs();
+    throw std::runtime_error(finite ? "integration ran away: a joint moves at " + std::to_string(speed) +
+                                          " m/s relative to the tow point at t = " + std::to_string(t_) + " s"
+                                    : "integration diverged: non-finite state at t = " + std::to_string(t_) + " s");
+  }
+  ++report.steps;
+  data_.geometry = geometryOf(y_);
+  report.max_length_error = std::max(report.max_length_error, lengthError());
+  if (remesh(t_))
+    steppers_ = std::make_unique<Steppers>(num);  // new state size: odeint sizes its buffers once
+  project(t_);
+  refreshOutputs();
 }
 
 ElementKinematics Simulator::elementKinematics(int e) const
 {
-  const int n = model_->jointCount();
-  if (e < 0 || e >= n)
+  const StateLayout L = layout();
+  if (e < 0 || e >= L.joints)
     throw std::out_of_range("elementKinematics: element " + std::to_string(e) + " is not in 0 .. " +
-                            std::to_string(n - 1));
-  Eigen::Map<const Eigen::Matrix3Xd> x(y_.data(), 3, n);
-  Eigen::Map<const Eigen::Matrix3Xd> v(y_.data() + 3 * n, 3, n);
+                            std::to_string(L.joints - 1));
+  const auto x = L.positions(y_);
+  const auto v = L.velocities(y_);
   const ShipEndState ship = ship_(t_);
   const Eigen::Vector3d x_f = e == 0 ? ship.p_W : Eigen::Vector3d(x.col(e - 1));
   const Eigen::Vector3d v_f = e == 0 ? ship.v_W : Eigen::Vector3d(v.col(e - 1));
@@ -425,19 +465,19 @@ ElementKinematics Simulator::elementKinematics(int e) const
 
 ChainState Simulator::state() const
 {
-  const int n = model_->jointCount();
+  const StateLayout L = layout();
   ChainState s;
-  s.x = Eigen::Map<const Eigen::Matrix3Xd>(y_.data(), 3, n);
-  s.v = Eigen::Map<const Eigen::Matrix3Xd>(y_.data() + 3 * n, 3, n);
+  s.x = L.positions(y_);
+  s.v = L.velocities(y_);
   return s;
 }
 
 Eigen::Matrix3Xd Simulator::jointPositions() const
 {
-  const int n = model_->jointCount();
-  Eigen::Matrix3Xd p(3, n + 1);
+  const StateLayout L = layout();
+  Eigen::Matrix3Xd p(3, L.joints + 1);
   p.col(0) = ship_(t_).p_W;
-  p.rightCols(n) = Eigen::Map<const Eigen::Matrix3Xd>(y_.data(), 3, n);
+  p.rightCols(L.joints) = L.positions(y_);
   return p;
 }
 

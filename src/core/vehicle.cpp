@@ -119,10 +119,7 @@ struct Vehicle::Loads
 };
 
 Vehicle::Vehicle(const VehicleParams& params, const NumericsParams& numerics)
-    : p_(params),
-      smoothing_speed_(numerics.tangential_smoothing_speed),
-      rudder_servo_(params.rudder.max_deflection, params.rudder.max_rate),
-      elevator_servo_(params.elevator.max_deflection, params.elevator.max_rate)
+    : p_(params), smoothing_speed_(numerics.tangential_smoothing_speed)
 {
   validate(p_);
   added_mass_b_ = p_.added_mass_b;
@@ -135,26 +132,29 @@ Vehicle::Vehicle(const VehicleParams& params, const NumericsParams& numerics)
   }
 }
 
-bool Vehicle::command(double t, double rudder, double elevator, double thrust)
+Actuators Vehicle::restingActuators(double t) const
+{
+  Actuators a;
+  a.rudder = FinServo(p_.rudder.max_deflection, p_.rudder.max_rate);
+  a.elevator = FinServo(p_.elevator.max_deflection, p_.elevator.max_rate);
+  a.rudder.reset(t, 0.0);
+  a.elevator.reset(t, 0.0);
+  return a;
+}
+
+bool Vehicle::command(Actuators& actuators, double t, double rudder, double elevator, double thrust) const
 {
   if (!std::isfinite(rudder) || !std::isfinite(elevator) || !std::isfinite(thrust))
     throw std::invalid_argument("vehicle command: rudder, elevator and thrust must be finite");
   const bool saturated = std::abs(rudder) > p_.rudder.max_deflection ||
                          std::abs(elevator) > p_.elevator.max_deflection || std::abs(thrust) > p_.max_thrust;
-  rudder_servo_.command(t, rudder);
-  elevator_servo_.command(t, elevator);
-  thrust_ = std::clamp(thrust, -p_.max_thrust, p_.max_thrust);
+  actuators.rudder.command(t, rudder);
+  actuators.elevator.command(t, elevator);
+  actuators.thrust = std::clamp(thrust, -p_.max_thrust, p_.max_thrust);
   return saturated;
 }
 
-void Vehicle::resetActuators(double t)
-{
-  rudder_servo_.reset(t, 0.0);
-  elevator_servo_.reset(t, 0.0);
-  thrust_ = 0.0;
-}
-
-Vehicle::Loads Vehicle::loads(double t, const ElementKinematics& k, const Environment& env,
+Vehicle::Loads Vehicle::loads(double t, const ElementKinematics& k, const Environment& env, const Actuators& actuators,
                               const BodyFrame& frame) const
 {
   const double tail = p_.tail_from_bail;
@@ -176,14 +176,14 @@ Vehicle::Loads Vehicle::loads(double t, const ElementKinematics& k, const Enviro
   moment += ((0.5 * tail - p_.cg_from_bail) * s).cross(vf.force) + vf.moment;
 
   // Thrust along x_b at the tail, its line of action thrust_offset_z above the axis.
-  out.thrust = thrust_;
-  const Eigen::Vector3d thrust_force = thrust_ * frame.x;
+  out.thrust = actuators.thrust;
+  const Eigen::Vector3d thrust_force = actuators.thrust * frame.x;
   force += thrust_force;
   moment += ((tail - p_.cg_from_bail) * s + p_.thrust_offset_z * frame.z).cross(thrust_force);
 
   // Fins at their servo angles, in the flow at their own point.
-  out.rudder = rudder_servo_.angleAt(t);
-  out.elevator = elevator_servo_.angleAt(t);
+  out.rudder = actuators.rudder.angleAt(t);
+  out.elevator = actuators.elevator.angleAt(t);
   FinPairParams rudder = p_.rudder, elevator = p_.elevator;
   rudder.lift_constant *= wet;
   rudder.drag_constant *= wet;
@@ -202,7 +202,8 @@ Vehicle::Loads Vehicle::loads(double t, const ElementKinematics& k, const Enviro
   return out;
 }
 
-void Vehicle::dynamics(double t, const ElementKinematics& k, const Environment& env, BodyDynamics& out) const
+void Vehicle::dynamics(double t, const ElementKinematics& k, const Environment& env, const Actuators& actuators,
+                       BodyDynamics& out) const
 {
   const double gamma = p_.cg_from_bail / p_.tail_from_bail;
   const Eigen::Vector3d v_cg = k.velocityAt(gamma);
@@ -216,7 +217,7 @@ void Vehicle::dynamics(double t, const ElementKinematics& k, const Environment& 
   out.mass.topLeftCorner<3, 3>() = p_.mass * I3;
   out.mass.bottomRightCorner<3, 3>() = inertia_W;
 
-  const Loads l = loads(t, k, env, frame);
+  const Loads l = loads(t, k, env, actuators, frame);
   out.wrench = l.wrench;
   // d(I w)/dt = I dw/dt + w x I w with w = s x ds/dt (no roll).
   out.wrench.tail<3>() -= k.omega.cross(inertia_W * k.omega);
@@ -248,7 +249,8 @@ void Vehicle::dynamics(double t, const ElementKinematics& k, const Environment& 
   }
 }
 
-VehicleOutputs Vehicle::outputs(double t, const ElementKinematics& k, const Environment& env) const
+VehicleOutputs Vehicle::outputs(double t, const ElementKinematics& k, const Environment& env,
+                                const Actuators& actuators) const
 {
   const double gamma = p_.cg_from_bail / p_.tail_from_bail;
   VehicleOutputs o;
@@ -263,7 +265,7 @@ VehicleOutputs Vehicle::outputs(double t, const ElementKinematics& k, const Envi
   o.depth = -o.p_cg_W.z();
   o.pitch = -std::asin(std::clamp(frame.x.z(), -1.0, 1.0));
   o.yaw = std::atan2(-frame.y.x(), frame.y.y());
-  const Loads l = loads(t, k, env, frame);
+  const Loads l = loads(t, k, env, actuators, frame);
   o.rudder = l.rudder;
   o.elevator = l.elevator;
   o.thrust = l.thrust;

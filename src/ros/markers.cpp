@@ -39,7 +39,7 @@ visualization_msgs::MarkerArray makeMarkers(const Simulator& sim, const Vehicle&
   visualization_msgs::MarkerArray array;
   const Eigen::Matrix3Xd joints = sim.jointPositions();
   const Eigen::Matrix3Xd& tensions = sim.tensions();
-  const int nu = sim.model().segments();
+  const int nu = sim.geometry().segments;
 
   // Cable: tow point to bail, each joint coloured by its tension.
   Marker cable = baseMarker(header, "cable", 0, Marker::LINE_STRIP);

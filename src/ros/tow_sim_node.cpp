@@ -138,9 +138,11 @@ TowSimNode::TowSimNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   odometry_limits_.max_ship_speed = params_.max_ship_speed;
   odometry_limits_.max_age = params_.max_odom_age;
   vehicle_ = std::make_shared<Vehicle>(config_.vehicle, config_.numerics);
-  model_ = std::make_shared<ChainModel>(config_.cable, vehicle_, config_.environment, config_.numerics);
   if (config_.seabed.type != SeabedParams::Type::kNone)
-    model_->setSeabed(seabed_ = std::make_shared<Seabed>(config_.seabed));
+    seabed_ = std::make_shared<Seabed>(config_.seabed);
+  model_ = std::make_shared<ChainModel>(config_.cable, vehicle_, config_.environment, config_.numerics, seabed_);
+  sim_ = std::make_unique<Simulator>(
+      model_, [this](double time) { return track_(time); }, config_.winch);
   diagnostics_.setHardwareID("tow_sim");
   diagnostics_.add("simulation", this, &TowSimNode::diagnose);
 
@@ -194,14 +196,14 @@ void TowSimNode::printStatus()
     ROS_INFO("waiting for ship odometry on %s", odom_sub_.getTopic().c_str());
     return;
   }
-  const VehicleOutputs o =
-      vehicle_->outputs(sim_->time(), sim_->elementKinematics(model_->segments()), model_->environment());
+  const VehicleOutputs o = vehicle_->outputs(sim_->time(), sim_->elementKinematics(sim_->geometry().segments),
+                                             sim_->data().environment, sim_->data().actuators);
   const Diversion d = lateralDiversion(o.p_cg_W, o.v_cg_W, sim_->shipEnd(), track_direction_);
   ROS_INFO(
       "t %7.1f s | ship %4.2f m/s | vehicle depth %6.1f m, diversion %6.2f m | tension ship %7.0f N, "
       "vehicle %6.0f N",
       sim_->time(), sim_->shipEnd().v_W.norm(), o.depth, d.offset, sim_->tensions().col(0).norm(),
-      sim_->tensions().col(model_->segments()).norm());
+      sim_->tensions().col(sim_->geometry().segments).norm());
 }
 
 void TowSimNode::start(double t)
@@ -211,10 +213,7 @@ void TowSimNode::start(double t)
   Eigen::Vector3d direction = -Eigen::Vector3d::UnitZ();
   if (params_.initial_shape != "hanging")
     direction = -std::cos(params_.initial_angle) * heading - std::sin(params_.initial_angle) * Eigen::Vector3d::UnitZ();
-  if (!sim_)
-    sim_ = std::make_unique<Simulator>(
-        model_, [this](double time) { return track_(time); }, config_.winch);
-  vehicle_->resetActuators(t);
+  sim_->resetActuators(t);
   // The initial shapes know nothing of the seabed: joints below it are raised onto it.
   auto lift = [this](ChainState state)
   {
@@ -226,7 +225,7 @@ void TowSimNode::start(double t)
   {
     try
     {
-      sim_->reset(t, lift(steadyTowEquilibrium(*model_, t, ship.p_W, ship.v_W).state));
+      sim_->reset(t, lift(steadyTowEquilibrium(*model_, sim_->data(), t, ship.p_W, ship.v_W).state));
       started_ = true;
       attitude_.reset();
       return;
@@ -236,7 +235,7 @@ void TowSimNode::start(double t)
       ROS_WARN_THROTTLE(5.0, "tow_sim: %s; starting from a straight line instead", e.what());
     }
   }
-  sim_->reset(t, lift(straightChain(*model_, ship.p_W, direction, ship.v_W)));
+  sim_->reset(t, lift(straightChain(sim_->geometry(), ship.p_W, direction, ship.v_W)));
   attitude_.reset();
   started_ = true;
 }
@@ -290,7 +289,7 @@ void TowSimNode::onFinCommand(const tow_sim::FinCommand::ConstPtr& msg)
     ROS_WARN_THROTTLE(2.0, "tow_sim: fins/command ignored: no ship odometry yet");
     return;
   }
-  if (vehicle_->command(sim_->time(), msg->rudder, msg->elevator, msg->thrust))
+  if (sim_->command(msg->rudder, msg->elevator, msg->thrust))
     ROS_WARN_THROTTLE(2.0,
                       "tow_sim: fins/command saturated: |rudder| <= %.3f rad, |elevator| <= %.3f rad, |thrust| "
                       "<= %.0f N",
@@ -309,7 +308,7 @@ void TowSimNode::onCurrent(const geometry_msgs::Vector3Stamped::ConstPtr& msg)
   }
   try
   {
-    model_->setCurrent(Eigen::Vector3d(msg->vector.x, msg->vector.y, msg->vector.z));
+    sim_->setCurrent(Eigen::Vector3d(msg->vector.x, msg->vector.y, msg->vector.z));
   }
   catch (const std::invalid_argument& e)
   {
@@ -336,7 +335,7 @@ void TowSimNode::onCurrentProfile(const tow_sim::CurrentProfile::ConstPtr& msg)
         CurrentSample{ msg->depth[i], Eigen::Vector3d(msg->velocity[i].x, msg->velocity[i].y, msg->velocity[i].z) });
   try
   {
-    model_->setCurrentProfile(profile);
+    sim_->setCurrentProfile(profile);
   }
   catch (const std::invalid_argument& e)
   {
@@ -477,9 +476,9 @@ void TowSimNode::publishTick(const ros::TimerEvent&)
   diagnostics_.update();
   if (!started_)
     return;
-  const int nu = model_->segments();
+  const int nu = sim_->geometry().segments;
   const ElementKinematics k = sim_->elementKinematics(nu);
-  const VehicleOutputs o = vehicle_->outputs(sim_->time(), k, model_->environment());
+  const VehicleOutputs o = vehicle_->outputs(sim_->time(), k, sim_->data().environment, sim_->data().actuators);
   const Eigen::Matrix3Xd joints = sim_->jointPositions();
   const Eigen::Matrix3Xd& tensions = sim_->tensions();
   if (!joints.allFinite() || !tensions.allFinite() || !o.p_cg_W.allFinite() || !o.v_cg_W.allFinite())

@@ -11,9 +11,10 @@ namespace tow_sim
 namespace test
 {
 inline std::shared_ptr<ChainModel> makeModel(const CableParams& cable, const EndElementParams& end,
-                                             const Environment& env, const NumericsParams& num = NumericsParams())
+                                             const Environment& env, const NumericsParams& num = NumericsParams(),
+                                             std::shared_ptr<const Seabed> seabed = nullptr)
 {
-  return std::make_shared<ChainModel>(cable, std::make_shared<RigidEndElement>(end, num), env, num);
+  return std::make_shared<ChainModel>(cable, std::make_shared<RigidEndElement>(end, num), env, num, seabed);
 }
 
 // An end element that is one more cable segment: same length, mass, diameter and coefficients.

@@ -20,7 +20,14 @@ Eigen::Matrix3d cross(const Eigen::Vector3d& r)
 DenseSolution solveDense(const ChainModel& model, double t, const ShipEndState& ship, const Eigen::Matrix3Xd& x,
                          const Eigen::Matrix3Xd& v)
 {
-  const int n = model.elementCount();
+  const ChainData data = model.initialData(t);
+  return solveDense(model, data.geometry, data, t, ship, x, v);
+}
+
+DenseSolution solveDense(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data, double t,
+                         const ShipEndState& ship, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v)
+{
+  const int n = geometry.elementCount();
   const int size = 6 * n;
   // Unknowns: a_j (joint x_{j+2}) at 3j, T_e (joint x_{e+1}) at 3n + 3e.
   auto acc = [](int joint) { return 3 * joint; };
@@ -35,12 +42,12 @@ DenseSolution solveDense(const ChainModel& model, double t, const ShipEndState& 
     const Eigen::Vector3d v_f = e == 0 ? ship.v_W : Eigen::Vector3d(v.col(e - 1));
     const ElementKinematics k = ElementKinematics::fromJoints(x_f, x.col(e), v_f, v.col(e));
     BodyDynamics body;
-    model.elementDynamics(e, t, k, body);
+    model.elementDynamics(e, t, k, geometry, data, body);
     // A winch changes the first segment's length L(t): differentiating s = (x_a - x_f)/L twice,
     // s x d2s/dt2 = s x (a_a - a_f)/L - 2 (L'/L) s x ds/dt, and w = s x ds/dt: the angular acceleration
     // has the known part -2 (L'/L) w, moved here to the loads.
     if (e == 0)
-      body.wrench -= body.mass.rightCols<3>() * (-2.0 * model.firstRate() / k.length * k.omega);
+      body.wrench -= body.mass.rightCols<3>() * (-2.0 * geometry.first_rate / k.length * k.omega);
     const double g = body.cg_fraction;
     const double l = k.length;
     const Eigen::Vector3d& s = k.s;
@@ -91,7 +98,7 @@ DenseSolution solveDense(const ChainModel& model, double t, const ShipEndState& 
     b(row + 5) -= (k.v_a - k.v_f).squaredNorm() / l;
     // A winch changes the first segment's length L(t): d^2/dt^2 |x_a - x_f|^2 / 2 = L'^2 + L L''.
     if (e == 0)
-      b(row + 5) += (model.firstRate() * model.firstRate() + l * model.firstAcceleration()) / l;
+      b(row + 5) += (geometry.first_rate * geometry.first_rate + l * geometry.first_acceleration) / l;
   }
 
   const Eigen::VectorXd z = A.fullPivLu().solve(b);

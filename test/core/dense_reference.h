@@ -19,6 +19,9 @@ struct DenseSolution
   Eigen::Matrix3Xd tensions;       // T_1 .. T_{nu+1}
 };
 
+// For the chain's geometry and data at that instant (the model's initial ones in the second form).
+DenseSolution solveDense(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data, double t,
+                         const ShipEndState& ship, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v);
 DenseSolution solveDense(const ChainModel& model, double t, const ShipEndState& ship, const Eigen::Matrix3Xd& x,
                          const Eigen::Matrix3Xd& v);
 

@@ -76,7 +76,6 @@ Tow makeTow(const Eigen::Vector3d& ship_velocity, const Eigen::Vector3d& current
   env.current_W = current;
   env.current_profile = current_profile;
   auto vehicle = std::make_shared<Vehicle>(VehicleParams());
-  vehicle->resetActuators(0.0);
   Tow tow;
   tow.model = std::make_shared<ChainModel>(cable, vehicle, env, NumericsParams());
   tow.sim = std::make_unique<Simulator>(tow.model, constantVelocityShip(Eigen::Vector3d::Zero(), ship_velocity));

@@ -292,7 +292,7 @@ TEST(RigidEndElement, MassMatrixAndWrench)
   const NumericsParams numerics;
   const RigidEndElement end(testEnd(), numerics);
   BodyDynamics out;
-  end.dynamics(0.0, kEndState.kinematics(), env, out);
+  end.dynamics(0.0, kEndState.kinematics(), env, end.restingActuators(0.0), out);
 
   const Vector3d s = Vector3d(-6.0, 2.0, -3.0) / 7.0;
   const double rho = 1025.0, g = 9.81, m = 210.0;
@@ -472,7 +472,7 @@ TEST(VehicleApproachA, AtRestCarriesWeightAndBuoyancyOnly)
   Environment env = testWater();
   env.current_W.setZero();
   BodyDynamics out;
-  vehicle.dynamics(0.0, rest.kinematics(), env, out);
+  vehicle.dynamics(0.0, rest.kinematics(), env, vehicle.restingActuators(0.0), out);
 
   const Vector3d s = Vector3d(-6.0, 2.0, -3.0) / 7.0;
   const Vector3d buoyancy = 1025.0 * 9.81 * 0.12 * Vector3d::UnitZ();
@@ -485,14 +485,15 @@ TEST(VehicleApproachA, AtRestCarriesWeightAndBuoyancyOnly)
 TEST(VehicleApproachA, TowedWithFinsAndThrust)
 {
   const VehicleParams p = testVehicle();
-  Vehicle vehicle(p);
-  vehicle.command(0.0, 0.12, -0.09, 150.0);  // the servos reach these within 0.35 s
+  const Vehicle vehicle(p);
+  Actuators actuators = vehicle.restingActuators(0.0);
+  vehicle.command(actuators, 0.0, 0.12, -0.09, 150.0);  // the servos reach these within 0.35 s
   // ds/dt = 0.3 (1, 3, 0)/1.4, normal to s.
   const Joints j{ Vector3d(5.0, 1.0, -60.0), Vector3d(3.8, 1.4, -60.6), Vector3d(2.0, 0.5, -0.1),
                   Vector3d(2.3, 1.4, -0.1) };
   const Environment env = testWater();
   BodyDynamics out;
-  vehicle.dynamics(5.0, j.kinematics(), env, out);
+  vehicle.dynamics(5.0, j.kinematics(), env, actuators, out);
 
   const Vector3d s = Vector3d(-6.0, 2.0, -3.0) / 7.0, up = Vector3d::UnitZ();
   const Frame b = zeroRollFrame(s);

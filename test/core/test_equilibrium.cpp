@@ -25,7 +25,6 @@ std::shared_ptr<ChainModel> vehicleModel(double length, int segments, const Eige
   Environment env;
   env.current_W = current;
   auto vehicle = std::make_shared<Vehicle>(VehicleParams());
-  vehicle->resetActuators(0.0);
   if (vehicle_out)
     *vehicle_out = vehicle;
   return std::make_shared<ChainModel>(cable, vehicle, env, NumericsParams());

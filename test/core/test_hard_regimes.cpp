@@ -36,7 +36,6 @@ Tow makeTow(double length, int segments, const VehicleParams& vp = VehicleParams
   env.current_W = current;
   Tow tow;
   tow.vehicle = std::make_shared<Vehicle>(vp);
-  tow.vehicle->resetActuators(0.0);
   tow.model = std::make_shared<ChainModel>(cable, tow.vehicle, env, NumericsParams());
   return tow;
 }
@@ -235,7 +234,7 @@ TEST(HardRegimes, TwoHourSoakWithRandomManoeuvresAndCommands)
   double worst_length = 0.0;
   for (int minute = 1; minute <= 120; ++minute)
   {
-    tow.vehicle->command(sim.time(), 0.4 * (u(rng) - 0.5), 0.4 * (u(rng) - 0.5), 200.0 * u(rng));
+    sim.command(0.4 * (u(rng) - 0.5), 0.4 * (u(rng) - 0.5), 200.0 * u(rng));
     ASSERT_NO_THROW(sim.advanceTo(minute * 60.0)) << "minute " << minute;
     worst_length = std::max(worst_length, sim.lengthError());
     if (minute == 10)

@@ -112,8 +112,8 @@ TEST(Params, SimulatorRejectsBadStatesAndTimes)
   sim.reset(10.0, good);
   EXPECT_THROW(sim.advanceTo(5.0), std::invalid_argument);
   EXPECT_THROW(sim.advanceTo(kNaN), std::invalid_argument);
-  EXPECT_THROW(model->setCurrent(Eigen::Vector3d(kNaN, 0.0, 0.0)), std::invalid_argument);
-  EXPECT_EQ(model->environment().current_W, Eigen::Vector3d::Zero());  // unchanged after the rejection
+  EXPECT_THROW(sim.setCurrent(Eigen::Vector3d(kNaN, 0.0, 0.0)), std::invalid_argument);
+  EXPECT_EQ(sim.data().environment.current_W, Eigen::Vector3d::Zero());  // unchanged after the rejection
 }
 
 }  // namespace

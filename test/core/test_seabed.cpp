@@ -84,13 +84,12 @@ TEST(Seabed, CableLaidOnTheBottomAtRestHasNoTensionGradientWhereItLies)
   cable.segments = 50;
   const EndElementParams end = test::endLikeSegment(cable);
   const Environment env;
-  auto model = test::makeModel(cable, end, env);
   SeabedParams sp;
   sp.type = SeabedParams::Type::kFlat;
   sp.depth = 100.0;
   sp.vehicle_stiffness = sp.stiffness * cable.segmentLength();  // the end element is one more segment
   sp.vehicle_damping = sp.damping * cable.segmentLength();
-  model->setSeabed(std::make_shared<Seabed>(sp));
+  auto model = test::makeModel(cable, end, env, NumericsParams(), std::make_shared<Seabed>(sp));
   const double d = cable.segmentLength();
   ChainState start;
   start.x.resize(3, 51);
@@ -133,14 +132,13 @@ TEST(Seabed, VehicleTowedIntoARisingSlopeIsLiftedNotPushedThrough)
   cable.length = 300.0;
   cable.segments = 60;
   auto vehicle = std::make_shared<Vehicle>(VehicleParams());
-  vehicle->resetActuators(0.0);
-  auto model = std::make_shared<ChainModel>(cable, vehicle, Environment(), NumericsParams());
-  const Eigen::Vector3d u(2.0, 0.0, 0.0);
-  const EquilibriumResult eq = steadyTowEquilibrium(*model, 0.0, Eigen::Vector3d::Zero(), u);
   std::vector<double> depths;
   for (double x = -1000.0; x <= 3000.0; x += 100.0)
     depths.push_back(x <= 400.0 ? 125.0 : (x >= 900.0 ? 70.0 : 125.0 - 55.0 * (x - 400.0) / 500.0));
-  model->setSeabed(std::make_shared<Seabed>(ridge(-1000.0, 100.0, depths)));
+  auto model = std::make_shared<ChainModel>(cable, vehicle, Environment(), NumericsParams(),
+                                            std::make_shared<Seabed>(ridge(-1000.0, 100.0, depths)));
+  const Eigen::Vector3d u(2.0, 0.0, 0.0);
+  const EquilibriumResult eq = steadyTowEquilibrium(*model, 0.0, Eigen::Vector3d::Zero(), u);
   const Seabed& bottom = *model->seabed();
   Simulator sim(model, constantVelocityShip(Eigen::Vector3d::Zero(), u));
   sim.reset(0.0, eq.state);
@@ -202,8 +200,8 @@ TEST(Seabed, NonFinitePositionsGiveNaNNotACrash)
   CableParams cable;
   cable.length = 100.0;
   cable.segments = 10;
-  auto model = test::makeModel(cable, test::endLikeSegment(cable), env);
-  model->setSeabed(std::make_shared<Seabed>(ridge(-1000.0, 1000.0, { 50.0, 60.0, 70.0 })));
+  auto model = test::makeModel(cable, test::endLikeSegment(cable), env, NumericsParams(),
+                               std::make_shared<Seabed>(ridge(-1000.0, 1000.0, { 50.0, 60.0, 70.0 })));
   Simulator sim(model,
                 [](double t)
                 {

@@ -16,6 +16,7 @@ namespace
 struct RandomCase
 {
   std::shared_ptr<ChainModel> model;
+  ChainData data;  // the actuators commanded, the first segment paid out
   ShipEndState ship;
   Eigen::Matrix3Xd x, v;
 };
@@ -59,10 +60,7 @@ std::shared_ptr<Vehicle> makeRandomVehicle(EndKind kind, std::mt19937& rng)
   p.munk_terms = kind == EndKind::kVehicleBMunk;
   p.thrust_offset_z = u(rng) - 0.5;
   p.rudder.center_of_pressure_offset = 0.05;
-  auto vehicle = std::make_shared<Vehicle>(p);
-  vehicle->resetActuators(0.0);
-  vehicle->command(0.0, 0.6 * (u(rng) - 0.5), 0.6 * (u(rng) - 0.5), 400.0 * (u(rng) - 0.5));
-  return vehicle;
+  return std::make_shared<Vehicle>(p);
 }
 
 // winch: the first segment is paid out (random length, rate and acceleration) while the rest is not.
@@ -96,11 +94,17 @@ RandomCase makeRandomCase(int segments, std::mt19937& rng, EndKind kind = EndKin
   c.ship.p_W = randomVector(rng, 100.0);
   c.ship.v_W = randomVector(rng, 3.0);
   c.ship.a_W = randomVector(rng, 0.5);
+  c.data = c.model->initialData(0.0);
+  if (kind != EndKind::kRigid)
+    c.model->endBody().command(c.data.actuators, 0.0, 0.6 * (u(rng) - 0.5), 0.6 * (u(rng) - 0.5),
+                               400.0 * (u(rng) - 0.5));
   double payout_rate = 0.0;
   if (winch)
   {
     payout_rate = 4.0 * (u(rng) - 0.5);
-    c.model->setFirstSegment((0.5 + u(rng)) * c.model->nominalSegmentLength(), payout_rate, 2.0 * (u(rng) - 0.5));
+    c.data.geometry.first_length = (0.5 + u(rng)) * c.model->nominalSegmentLength();
+    c.data.geometry.first_rate = payout_rate;
+    c.data.geometry.first_acceleration = 2.0 * (u(rng) - 0.5);
   }
   const int n = c.model->jointCount();
   c.x.resize(3, n);
@@ -110,7 +114,7 @@ RandomCase makeRandomCase(int segments, std::mt19937& rng, EndKind kind = EndKin
   {
     const Eigen::Vector3d s = randomVector(rng, 1.0).normalized();
     const Eigen::Vector3d omega = randomVector(rng, 0.3);
-    const double d = c.model->elementLength(e);
+    const double d = c.data.geometry.elementLength(e);
     c.x.col(e) = x_f + d * s;
     c.v.col(e) = v_f + d * omega.cross(s);  // consistent with the length constraint
     if (e == 0)
@@ -134,10 +138,10 @@ TEST(SolverVsDense, RandomStatesMatchToOnePartInABillion)
     for (int trial = 0; trial < 5; ++trial)
     {
       const RandomCase c = makeRandomCase(segments, rng);
-      ChainSolver solver(*c.model);
+      ChainSolver solver;
       Eigen::Matrix3Xd a(3, c.model->jointCount()), tensions(3, c.model->jointCount());
-      solver.solve(0.0, c.ship, c.x, c.v, a, &tensions);
-      const test::DenseSolution ref = test::solveDense(*c.model, 0.0, c.ship, c.x, c.v);
+      solver.solve(*c.model, c.data.geometry, c.data, 0.0, c.ship, c.x, c.v, a, &tensions);
+      const test::DenseSolution ref = test::solveDense(*c.model, c.data.geometry, c.data, 0.0, c.ship, c.x, c.v);
       EXPECT_LT(relativeError(a, ref.accelerations), 1e-9) << "nu = " << segments << ", trial " << trial;
       EXPECT_LT(relativeError(tensions, ref.tensions), 1e-9) << "nu = " << segments << ", trial " << trial;
     }
@@ -152,10 +156,10 @@ TEST(SolverVsDense, WithTheWinchPayingOutTheFirstSegment)
     for (int segments = 1; segments <= 20; ++segments)
     {
       const RandomCase c = makeRandomCase(segments, rng, kind, true);
-      ChainSolver solver(*c.model);
+      ChainSolver solver;
       Eigen::Matrix3Xd a(3, c.model->jointCount()), tensions(3, c.model->jointCount());
-      solver.solve(0.2, c.ship, c.x, c.v, a, &tensions);
-      const test::DenseSolution ref = test::solveDense(*c.model, 0.2, c.ship, c.x, c.v);
+      solver.solve(*c.model, c.data.geometry, c.data, 0.2, c.ship, c.x, c.v, a, &tensions);
+      const test::DenseSolution ref = test::solveDense(*c.model, c.data.geometry, c.data, 0.2, c.ship, c.x, c.v);
       EXPECT_LT(relativeError(a, ref.accelerations), 1e-9) << "nu = " << segments;
       EXPECT_LT(relativeError(tensions, ref.tensions), 1e-9) << "nu = " << segments;
     }
@@ -172,11 +176,11 @@ TEST(SolverVsDense, WithTheFullVehicleInBothApproaches)
       for (int trial = 0; trial < 3; ++trial)
       {
         const RandomCase c = makeRandomCase(segments, rng, kind);
-        ChainSolver solver(*c.model);
+        ChainSolver solver;
         Eigen::Matrix3Xd a(3, c.model->jointCount()), tensions(3, c.model->jointCount());
         const double t = 0.4;  // fins part-way through their travel
-        solver.solve(t, c.ship, c.x, c.v, a, &tensions);
-        const test::DenseSolution ref = test::solveDense(*c.model, t, c.ship, c.x, c.v);
+        solver.solve(*c.model, c.data.geometry, c.data, t, c.ship, c.x, c.v, a, &tensions);
+        const test::DenseSolution ref = test::solveDense(*c.model, c.data.geometry, c.data, t, c.ship, c.x, c.v);
         const int k = static_cast<int>(kind);
         EXPECT_LT(relativeError(a, ref.accelerations), 1e-9) << "kind " << k << ", nu = " << segments;
         EXPECT_LT(relativeError(tensions, ref.tensions), 1e-9) << "kind " << k << ", nu = " << segments;

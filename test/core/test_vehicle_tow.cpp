@@ -26,7 +26,8 @@ struct Tow
 
   VehicleOutputs out() const
   {
-    return vehicle->outputs(sim->time(), sim->elementKinematics(model->segments()), model->environment());
+    return vehicle->outputs(sim->time(), sim->elementKinematics(model->segments()), sim->data().environment,
+                            sim->data().actuators);
   }
   double bailTension() const { return sim->tensions().col(model->segments()).norm(); }
 };
@@ -39,7 +40,6 @@ Tow makeTow(const VehicleParams& p, double speed, const Eigen::Vector3d& start_d
   cable.length = cable_length;
   cable.segments = segments;
   tow.vehicle = std::make_shared<Vehicle>(p);
-  tow.vehicle->resetActuators(0.0);
   tow.model = std::make_shared<ChainModel>(cable, tow.vehicle, Environment(), NumericsParams());
   const Eigen::Vector3d u(speed, 0.0, 0.0);
   tow.sim = std::make_unique<Simulator>(tow.model, constantVelocityShip(Eigen::Vector3d::Zero(), u));
@@ -67,8 +67,8 @@ TEST(VehicleTow, StraightTowIsStableInYawAndPitch)
   const Eigen::Vector3d u(2.0, 0.0, 0.0);
   Simulator at_rest(tow.model, constantVelocityShip(Eigen::Vector3d::Zero(), u));
   at_rest.reset(0.0, steadyTowEquilibrium(*tow.model, 0.0, Eigen::Vector3d::Zero(), u).state);
-  const VehicleOutputs eq =
-      tow.vehicle->outputs(0.0, at_rest.elementKinematics(tow.model->segments()), tow.model->environment());
+  const VehicleOutputs eq = tow.vehicle->outputs(0.0, at_rest.elementKinematics(tow.model->segments()),
+                                                 at_rest.data().environment, at_rest.data().actuators);
   std::printf(
       "trim at 2 m/s: depth %.3f m, pitch %.4f deg, yaw %.5f deg, bail tension %.2f N; equilibrium solver: "
       "depth %.3f m, pitch %.4f deg\n",
@@ -109,8 +109,8 @@ TEST(VehicleTow, ElevatorRaisesRudderTurnsToPortThrustUnloadsTheBail)
   auto runWith = [&](double rudder, double elevator, double thrust, double duration)
   {
     tow.sim->reset(300.0, settled);
-    tow.vehicle->resetActuators(300.0);
-    tow.vehicle->command(300.0, rudder, elevator, thrust);
+    tow.sim->resetActuators(300.0);
+    tow.sim->command(rudder, elevator, thrust);
     tow.sim->advanceTo(300.0 + duration);
     return std::make_pair(tow.out(), Eigen::Vector3d(tow.sim->tensions().col(tow.model->segments())));
   };

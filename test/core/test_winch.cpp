@@ -41,7 +41,6 @@ Tow makeTow(double length, int segments, const Eigen::Vector3d& ship_velocity, c
   cable.segments = segments;
   Tow tow;
   tow.vehicle = std::make_shared<Vehicle>(VehicleParams());
-  tow.vehicle->resetActuators(0.0);
   tow.model = std::make_shared<ChainModel>(cable, tow.vehicle, Environment(), NumericsParams());
   tow.sim = std::make_unique<Simulator>(tow.model, constantVelocityShip(Eigen::Vector3d::Zero(), ship_velocity), winch);
   const EquilibriumResult eq = steadyTowEquilibrium(*tow.model, 0.0, Eigen::Vector3d::Zero(), ship_velocity);
@@ -58,20 +57,21 @@ double vehicleDepth(const Simulator& sim)
 void expectBookkeeping(const Simulator& sim)
 {
   const ChainModel& m = sim.model();
+  const ChainGeometry& g = sim.geometry();
   const Eigen::Matrix3Xd p = sim.jointPositions();
   double along = 0.0;
-  for (int e = 0; e < m.segments(); ++e)
+  for (int e = 0; e < g.segments; ++e)
     along += (p.col(e + 1) - p.col(e)).norm();
   EXPECT_NEAR(along, sim.cableLength(), 1e-9 * sim.cableLength());
-  EXPECT_NEAR(m.cableLength(), sim.cableLength(), 1e-9 * sim.cableLength());
+  EXPECT_NEAR(g.cableLength(), sim.cableLength(), 1e-9 * sim.cableLength());
   // Mass per length is the cable's: the chain's mass is the cable out times it.
   double mass = 0.0;
-  for (int e = 0; e < m.segments(); ++e)
-    mass += e == 0 ? m.segment().mass * m.firstLength() / m.nominalSegmentLength() : m.segment().mass;
+  for (int e = 0; e < g.segments; ++e)
+    mass += e == 0 ? m.firstSegment(g).mass : m.segment().mass;
   EXPECT_NEAR(mass, m.cable().mass_per_length * sim.cableLength(), 1e-9 * mass);
   const double d = m.nominalSegmentLength();
-  EXPECT_GE(m.firstLength(), sim.winch().segment_min_fraction * d - 1e-9);
-  EXPECT_LE(m.firstLength(), sim.winch().segment_max_fraction * d + 1e-9);
+  EXPECT_GE(g.first_length, sim.winch().segment_min_fraction * d - 1e-9);
+  EXPECT_LE(g.first_length, sim.winch().segment_max_fraction * d + 1e-9);
 }
 
 TEST(Winch, IsOffByDefaultAndValidated)
@@ -143,7 +143,7 @@ TEST(Winch, LimitsOnRateAccelerationAndLengthHold)
   std::printf(
       "winch limits: |rate| <= %.6f m/s (1), |accel| <= %.6f m/s^2 (0.2), length %.6f .. %.6f m "
       "(280 .. 320), %d segments at the end\n",
-      worst_rate, worst_accel, shortest, longest, tow.model->segments());
+      worst_rate, worst_accel, shortest, longest, tow.sim->geometry().segments);
   EXPECT_LE(worst_rate, 1.0 + 1e-9);
   EXPECT_GT(worst_rate, 0.99);  // it did reach full speed
   EXPECT_LE(worst_accel, 0.2 * (1.0 + 1e-3));
@@ -181,7 +181,7 @@ TEST(Winch, PayingOutDeepensTowardTheLongerCablesEquilibrium)
     expectBookkeeping(*tow.sim);
   }
   EXPECT_NEAR(tow.sim->cableLength(), 400.0, 1e-3);
-  EXPECT_EQ(tow.model->segments(), 80);
+  EXPECT_EQ(tow.sim->geometry().segments, 80);
   tow.sim->advanceTo(1200.0);
   const double end_depth = vehicleDepth(*tow.sim);
   std::printf(
@@ -213,7 +213,7 @@ TEST(Winch, PayingOutAndHaulingBackAtRestReturnsTheSameShape)
   tow.sim->setWinchCommand(0.0);
   tow.sim->advanceTo(80.0);
   const double paid = tow.sim->cableLength() - 300.0;
-  const int segments_out = tow.model->segments();
+  const int segments_out = tow.sim->geometry().segments;
   tow.sim->setWinchCommand(-1.0);
   tow.sim->advanceTo(200.0);
   tow.sim->setWinchCommand(0.0);
@@ -222,12 +222,12 @@ TEST(Winch, PayingOutAndHaulingBackAtRestReturnsTheSameShape)
   std::printf(
       "at rest: paid out %.2f m (%d segments), hauled back to %.6f m (%d segments); largest joint offset "
       "from the start %.2e m\n",
-      paid, segments_out, tow.sim->cableLength(), tow.model->segments(),
+      paid, segments_out, tow.sim->cableLength(), tow.sim->geometry().segments,
       end.cols() == start.cols() ? (end - start).cwiseAbs().maxCoeff() : -1.0);
   EXPECT_GT(paid, 40.0);
   EXPECT_GT(segments_out, 67);
   EXPECT_NEAR(tow.sim->cableLength(), 300.0, 1e-6);
-  ASSERT_EQ(tow.model->segments(), 60);
+  ASSERT_EQ(tow.sim->geometry().segments, 60);
   EXPECT_LT((end - start).cwiseAbs().maxCoeff(), 1e-8);  // measured 4e-13 m
 }
 
@@ -248,7 +248,7 @@ TEST(Winch, PayingOutAndHaulingBackUnderwayReturnsToTheSteadyTow)
   std::printf(
       "underway: depth %.2f m -> %.2f m with 50 m more -> back to %.6f m, %d segments; largest joint offset "
       "from the start after settling %.2e m\n",
-      -start(2, start.cols() - 1), depth_out, tow.sim->cableLength(), tow.model->segments(),
+      -start(2, start.cols() - 1), depth_out, tow.sim->cableLength(), tow.sim->geometry().segments,
       end.cols() == start.cols() ? (end - start).colwise().norm().maxCoeff() : -1.0);
   EXPECT_GT(depth_out + start(2, start.cols() - 1), 3.0);  // it went deeper on the way out
   EXPECT_NEAR(tow.sim->cableLength(), 300.0, 1e-6);
@@ -280,15 +280,15 @@ TEST(Winch, ReMeshingTerminatesOnTheBandEdge)
   w.min_length = 5.0;
   w.max_length = 40.0;
   auto vehicle = std::make_shared<Vehicle>(VehicleParams());
-  vehicle->resetActuators(0.0);
   auto model = std::make_shared<ChainModel>(cable, vehicle, Environment(), NumericsParams());
   const double d = model->nominalSegmentLength();
-  model->setLayout(87, 35.0 - 86 * d);  // 35 m out, the first segment a few ulps past 1.5 d
   Simulator sim(model, constantVelocityShip(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()), w);
-  sim.reset(0.0, straightChain(*model, Eigen::Vector3d::Zero(), -Eigen::Vector3d::UnitZ(), Eigen::Vector3d::Zero()));
+  sim.restoreLayout(87, (35.0 - 86 * d) + 86 * d);  // 35 m out, the first segment a few ulps past 1.5 d
+  sim.reset(0.0,
+            straightChain(sim.geometry(), Eigen::Vector3d::Zero(), -Eigen::Vector3d::UnitZ(), Eigen::Vector3d::Zero()));
   sim.advanceTo(0.5);
-  EXPECT_GE(model->segments(), 87);
-  EXPECT_LE(model->segments(), 88);
+  EXPECT_GE(sim.geometry().segments, 87);
+  EXPECT_LE(sim.geometry().segments, 88);
   expectBookkeeping(sim);
 }
 
@@ -321,7 +321,6 @@ TEST(Winch, PaidOutCableDragsAtItsOwnSpeedThroughTheWater)
   w.min_length = 50.0;
   w.max_acceleration = 1.0;
   auto vehicle = std::make_shared<Vehicle>(VehicleParams());
-  vehicle->resetActuators(0.0);
   const Environment env;
   auto model = std::make_shared<ChainModel>(cable, vehicle, env, NumericsParams());
   Simulator sim(model, constantVelocityShip(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()), w);
@@ -330,7 +329,7 @@ TEST(Winch, PaidOutCableDragsAtItsOwnSpeedThroughTheWater)
   sim.setWinchCommand(1.0);
   sim.advanceTo(80.0);
   ASSERT_NEAR(sim.payoutRate(), 1.0, 1e-6);
-  const double L0 = model->firstLength();
+  const double L0 = sim.geometry().first_length;
   const double area = M_PI * cable.diameter * cable.diameter / 4.0;
   const double net_weight = (cable.mass_per_length - env.water_density * area) * env.gravity * L0;
   const double c1 = 0.5 * env.water_density * cable.tangential_drag_coefficient * M_PI * cable.diameter;
@@ -363,7 +362,6 @@ TEST(Winch, FastHaulInWithFixedStepsNeverCollapsesTheFirstSegment)
   w.segment_min_fraction = 0.1;
   w.segment_max_fraction = 1.1;
   auto vehicle = std::make_shared<Vehicle>(VehicleParams(), num);
-  vehicle->resetActuators(0.0);
   auto model = std::make_shared<ChainModel>(cable, vehicle, Environment(), num);
   Simulator sim(model, constantVelocityShip(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()), w);
   sim.reset(0.0, straightChain(*model, Eigen::Vector3d::Zero(), -Eigen::Vector3d::UnitZ(), Eigen::Vector3d::Zero()));
@@ -378,7 +376,7 @@ TEST(Winch, FastHaulInWithFixedStepsNeverCollapsesTheFirstSegment)
   std::printf("hauled in 50 m at 20 m/s with rk4: largest length error before projection %.1e\n", before_projection);
   EXPECT_LT(before_projection, 1e-9);
   EXPECT_NEAR(sim.cableLength(), 50.0, 1e-3);
-  EXPECT_EQ(model->segments(), 50);
+  EXPECT_EQ(sim.geometry().segments, 50);
   EXPECT_LT(sim.lengthError(), 1e-9);
   expectBookkeeping(sim);
 }

@@ -1,7 +1,11 @@
-// The constant model of the towed chain (pinocchio's Model): nu identical cable segments followed by
-// the end body. Indexing in code is 0-based: element e = 0..nu joins joint e (forward, toward the
-// ship) and joint e+1; joint 0 is the tow point x_1, joint nu is the bail x_{nu+1}, joint nu+1 the
-// tail point x_{nu+2}. Element e = nu is the end body.
+// The model of the towed chain (pinocchio's Model): nu cable segments followed by the end body, with
+// their coefficients, the environment as configured and the seabed. Constant after construction:
+// everything that changes while running (the layout the winch re-meshes, the currents, the actuators) is
+// ChainData, and the loads are evaluated for a given ChainGeometry and ChainData.
+//
+// Indexing in code is 0-based: element e = 0..nu joins joint e (forward, toward the ship) and joint e+1;
+// joint 0 is the tow point x_1, joint nu is the bail x_{nu+1}, joint nu+1 the tail point x_{nu+2}.
+// Element e = nu is the end body.
 #pragma once
 
 #include <Eigen/Core>
@@ -21,63 +25,84 @@ struct ShipEndState
   Eigen::Vector3d a_W = Eigen::Vector3d::Zero();  // [m/s^2]
 };
 
+// The element lengths of the chain at one instant: nu segments, the first (at the ship) of its own length
+// while the winch runs (it changes at first_rate and first_acceleration), the others nominal, the end body
+// last.
+struct ChainGeometry
+{
+  int segments = 1;                 // nu
+  double nominal_length = 0.0;      // [m] L / nu of the configuration
+  double first_length = 0.0;        // [m] the first segment's length (nominal without a winch)
+  double first_rate = 0.0;          // [m/s] its rate of change
+  double first_acceleration = 0.0;  // [m/s^2]
+  double end_length = 0.0;          // [m] d_{nu+1}
+
+  int elementCount() const { return segments + 1; }  // nu + 1
+  int jointCount() const { return segments + 1; }    // unknown joints x_2 .. x_{nu+2}
+  double elementLength(int e) const { return e == 0 ? first_length : (e < segments ? nominal_length : end_length); }
+  double cableLength() const { return first_length + (segments - 1) * nominal_length; }  // [m] cable out
+  double totalLength() const { return cableLength() + end_length; }
+};
+
+// Everything about the chain that changes while it runs, apart from the integrator's state (joint positions
+// and velocities, cable out and its rate): the geometry after the last step, the currents, the actuators
+// and the winch command. The right-hand side reads it and never writes it.
+struct ChainData
+{
+  ChainGeometry geometry;      // after the last accepted step (the winch re-meshes between steps)
+  Environment environment;     // gravity and density as the model's; the currents now
+  Actuators actuators;         // the end body's fins and thrust
+  double winch_command = 0.0;  // [m/s] payout rate commanded, positive pays out
+};
+
 class ChainModel
 {
 public:
-  // Validates every parameter (std::invalid_argument on a bad one).
+  // Validates every parameter (std::invalid_argument on a bad one). No seabed by default.
   ChainModel(const CableParams& cable, std::shared_ptr<const EndBody> end_body, const Environment& env,
-             const NumericsParams& numerics);
+             const NumericsParams& numerics, std::shared_ptr<const Seabed> seabed = nullptr);
 
-  // The layout may change while running (winch): nu segments, the first (at the ship) of length
-  // firstLength(), the others of the nominal length cable.length / cable.segments.
-  int segments() const { return segments_; }          // nu
-  int elementCount() const { return segments_ + 1; }  // nu + 1
-  int jointCount() const { return segments_ + 1; }    // unknown joints x_2 .. x_{nu+2}
-  double elementLength(int e) const
-  {
-    return e == 0 ? first_.length : (e < segments_ ? segment_.length : end_body_->length());
-  }
+  // As configured (the winch changes the running chain's: see ChainData::geometry).
+  ChainGeometry initialGeometry() const;
+  int segments() const { return cable_.segments; }          // nu
+  int elementCount() const { return cable_.segments + 1; }  // nu + 1
+  int jointCount() const { return cable_.segments + 1; }    // unknown joints x_2 .. x_{nu+2}
+  double elementLength(int e) const { return initialGeometry().elementLength(e); }
   double nominalSegmentLength() const { return segment_.length; }
-  double cableLength() const { return first_.length + (segments_ - 1) * segment_.length; }  // [m] cable out
-  double totalLength() const { return cableLength() + end_body_->length(); }
-  double firstLength() const { return first_.length; }
-  double firstRate() const { return first_rate_; }                  // [m/s] d/dt of the first segment's length
-  double firstAcceleration() const { return first_acceleration_; }  // [m/s^2]
+  double cableLength() const { return initialGeometry().cableLength(); }  // [m] as configured
+  double totalLength() const { return initialGeometry().totalLength(); }
 
-  // Winch: the first segment's length [m] (> 0), its rate [m/s] and acceleration [m/s^2] now; and
-  // re-meshing to nu segments with the given first length. Mass per length stays the cable's.
-  void setFirstSegment(double length, double rate, double acceleration);
-  void setLayout(int segments, double first_length);
+  // The data at rest at time t [s]: the configured geometry and environment, the actuators at rest.
+  ChainData initialData(double t = 0.0) const;
 
   const CableParams& cable() const { return cable_; }
   const CableSegmentModel& segment() const { return segment_; }
   const EndBody& endBody() const { return *end_body_; }
-  const Environment& environment() const { return env_; }
+  const Environment& environment() const { return env_; }  // as configured
   const NumericsParams& numerics() const { return numerics_; }
-
-  // The uniform current may change while running (validated like the rest).
-  void setCurrent(const Eigen::Vector3d& current_W);
-  // So may the current profile (depth -> current, added to the uniform current; empty: none).
-  void setCurrentProfile(const std::vector<CurrentSample>& profile);
-
-  // The seabed (none by default); contact loads join the elements' wrenches.
-  void setSeabed(std::shared_ptr<const Seabed> seabed) { seabed_ = std::move(seabed); }
   const Seabed* seabed() const { return seabed_ && seabed_->present() ? seabed_.get() : nullptr; }
 
-  // Newton-Euler description of element e at time t [s] and the given kinematics; with_contact false
-  // leaves out the seabed.
-  void elementDynamics(int e, double t, const ElementKinematics& k, BodyDynamics& out, bool with_contact = true) const;
+  // The first segment's model for a geometry (scaled to its length while the winch runs).
+  CableSegmentModel firstSegment(const ChainGeometry& geometry) const;
+
+  // Newton-Euler description of element e at time t [s] and the given kinematics, for the chain's geometry
+  // and data at that instant; with_contact false leaves out the seabed.
+  void elementDynamics(int e, double t, const ElementKinematics& k, const ChainGeometry& geometry,
+                       const ChainData& data, BodyDynamics& out, bool with_contact = true) const;
 
 private:
+  void addContact(int e, const ElementKinematics& k, const ChainGeometry& geometry, BodyDynamics& out) const;
+
   CableParams cable_;
   CableSegmentModel segment_;  // nominal segment
-  CableSegmentModel first_;    // the first segment, scaled to its length
-  int segments_ = 0;
-  double first_rate_ = 0.0, first_acceleration_ = 0.0;
   std::shared_ptr<const EndBody> end_body_;
   Environment env_;
   NumericsParams numerics_;
   std::shared_ptr<const Seabed> seabed_;
 };
+
+// Validates a change of the currents before it enters ChainData (std::invalid_argument naming the field).
+void setCurrent(ChainData& data, const Eigen::Vector3d& current_W);
+void setCurrentProfile(ChainData& data, const std::vector<CurrentSample>& profile);
 
 }  // namespace tow_sim

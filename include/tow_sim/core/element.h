@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "tow_sim/core/fins.h"
 #include "tow_sim/core/params.h"
 
 namespace tow_sim
@@ -66,17 +67,32 @@ VelocityForces velocityForces(const ElementKinematics& k, const Eigen::Vector3d&
 void cableSegmentDynamics(const CableSegmentModel& seg, const ElementKinematics& k, const Environment& env,
                           BodyDynamics& out);
 
-// Element nu+1. Implementations: RigidEndElement here; the full towed vehicle plugs in the same way.
+// What an operator sets on the end body while it runs (the vehicle's fins and propeller); part of the
+// chain's mutable data, not of the model. A rigid end body has none and ignores them.
+struct Actuators
+{
+  FinServo rudder, elevator;  // rate-limited fin servos (their angles are known at any time)
+  double thrust = 0.0;        // [N] propeller thrust along x_b, saturated
+};
+
+// Element nu+1. Implementations: RigidEndElement here; the full towed vehicle plugs in the same way. An
+// end body is constant: whatever changes while running comes in as Actuators.
 class EndBody
 {
 public:
   virtual ~EndBody() = default;
   virtual double length() const = 0;  // [m] d_{nu+1}, bail to tail point
-  // Newton-Euler description at time t [s] (fin servos and thrust depend on time).
-  virtual void dynamics(double t, const ElementKinematics& k, const Environment& env, BodyDynamics& out) const = 0;
+  // Newton-Euler description at time t [s] (fin servos move in time) in the environment `env`.
+  virtual void dynamics(double t, const ElementKinematics& k, const Environment& env, const Actuators& actuators,
+                        BodyDynamics& out) const = 0;
   // Points that touch the seabed, as fractions of the way from the bail (0) to the tail point (1);
   // negative ahead of the bail. Default: the tail point (the bail is the cable's last joint).
   virtual std::vector<double> contactFractions() const { return { 1.0 }; }
+  // The actuators at rest at time t [s]: fins centred (with this body's servo limits), no thrust.
+  virtual Actuators restingActuators(double t) const;
+  // Commands the actuators from time t [s] on; values beyond the limits saturate. Returns true when
+  // something saturated. Throws std::invalid_argument for a non-finite value or a body without actuators.
+  virtual bool command(Actuators& actuators, double t, double rudder, double elevator, double thrust) const;
 };
 
 // Axisymmetric rigid end body: weight at the CG, buoyancy at the CB, cable-like velocity forces and
@@ -86,7 +102,8 @@ class RigidEndElement : public EndBody
 public:
   RigidEndElement(const EndElementParams& params, const NumericsParams& numerics);
   double length() const override { return p_.length; }
-  void dynamics(double t, const ElementKinematics& k, const Environment& env, BodyDynamics& out) const override;
+  void dynamics(double t, const ElementKinematics& k, const Environment& env, const Actuators& actuators,
+                BodyDynamics& out) const override;
   const EndElementParams& params() const { return p_; }
 
 private:

@@ -2,7 +2,7 @@
 // moving with the ship's constant velocity, no accelerations. From the vehicle up, each element's force
 // balance gives the tension at its forward joint and its moment balance about the CG fixes its
 // direction; the shape hangs from the tow point at the end. Fin angles and thrust are the vehicle's
-// current ones; the current is the model's.
+// current ones; the currents are the chain's now.
 #pragma once
 
 #include <Eigen/Core>
@@ -22,7 +22,10 @@ struct EquilibriumResult
 };
 
 // Throws std::runtime_error naming the element when no direction balances it (or the speed or current
-// is not finite). t is the time at which the vehicle's fin angles and thrust are taken.
+// is not finite). The chain's geometry, currents and actuators are `data`'s (the model's initial data in
+// the first form); t is the time at which the fin angles are taken.
+EquilibriumResult steadyTowEquilibrium(const ChainModel& model, const ChainData& data, double t,
+                                       const Eigen::Vector3d& tow_point_W, const Eigen::Vector3d& ship_velocity_W);
 EquilibriumResult steadyTowEquilibrium(const ChainModel& model, double t, const Eigen::Vector3d& tow_point_W,
                                        const Eigen::Vector3d& ship_velocity_W);
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstddef>
 #include <functional>
 #include <memory>
 #include <vector>
@@ -26,12 +27,35 @@ struct ChainState
   Eigen::Matrix3Xd v;  // [m/s]
 };
 
-// A straight chain from the tow point along `direction`, every joint moving with `velocity`.
+// A straight chain of the given geometry (the model's as configured) from the tow point along `direction`,
+// every joint moving with `velocity`.
+ChainState straightChain(const ChainGeometry& geometry, const Eigen::Vector3d& tow_point_W,
+                         const Eigen::Vector3d& direction_W, const Eigen::Vector3d& velocity_W);
 ChainState straightChain(const ChainModel& model, const Eigen::Vector3d& tow_point_W,
                          const Eigen::Vector3d& direction_W, const Eigen::Vector3d& velocity_W);
 
 // Largest |(|x_{l+1} - x_l|) / d_l - 1| over the elements: the relative length error.
-double maxRelativeLengthError(const ChainModel& model, const Eigen::Vector3d& tow_point_W, const ChainState& state);
+double maxRelativeLengthError(const ChainGeometry& geometry, const Eigen::Vector3d& tow_point_W,
+                              const Eigen::Ref<const Eigen::Matrix3Xd>& x);
+
+// The integrator's state vector: joint positions x_2 .. x_{nu+2} (3 x (nu+1)), their velocities, the cable
+// out [m] and the payout rate [m/s], in that order. Named views instead of index arithmetic.
+struct StateLayout
+{
+  int joints = 0;  // nu + 1
+  std::size_t size() const { return 6 * static_cast<std::size_t>(joints) + 2; }
+  Eigen::Map<Eigen::Matrix3Xd> positions(std::vector<double>& y) const { return { y.data(), 3, joints }; }
+  Eigen::Map<const Eigen::Matrix3Xd> positions(const std::vector<double>& y) const { return { y.data(), 3, joints }; }
+  Eigen::Map<Eigen::Matrix3Xd> velocities(std::vector<double>& y) const { return { y.data() + 3 * joints, 3, joints }; }
+  Eigen::Map<const Eigen::Matrix3Xd> velocities(const std::vector<double>& y) const
+  {
+    return { y.data() + 3 * joints, 3, joints };
+  }
+  double& cableOut(std::vector<double>& y) const { return y[6 * static_cast<std::size_t>(joints)]; }
+  double cableOut(const std::vector<double>& y) const { return y[6 * static_cast<std::size_t>(joints)]; }
+  double& payoutRate(std::vector<double>& y) const { return y[6 * static_cast<std::size_t>(joints) + 1]; }
+  double payoutRate(const std::vector<double>& y) const { return y[6 * static_cast<std::size_t>(joints) + 1]; }
+};
 
 // Lateral diversion (the report's): horizontal offset of a point from the line through the ship along
 // the unit horizontal track direction, positive to port, and its rate for a fixed track direction.
@@ -58,11 +82,16 @@ struct StepReport
 class Simulator
 {
 public:
-  // The winch (validated against the model's cable) is off by default: the cable length is fixed.
-  Simulator(std::shared_ptr<ChainModel> model, ShipMotion ship, const WinchParams& winch = WinchParams());
+  using StateVector = std::vector<double>;  // laid out as StateLayout says
+
+  // The winch (validated against the model's cable) is off by default: the cable length is fixed. The
+  // chain starts with the model's initial data (its currents, the end body's actuators at rest at t = 0).
+  Simulator(std::shared_ptr<const ChainModel> model, ShipMotion ship, const WinchParams& winch = WinchParams());
+  ~Simulator();
 
   // Restart at time t from the given state, projected onto the segment lengths. Throws
-  // std::invalid_argument for a wrong size or a non-finite value.
+  // std::invalid_argument for a wrong size or a non-finite value. The cable out and the layout are kept;
+  // the winch restarts from rest with its command cleared; the actuators are not touched.
   void reset(double t, const ChainState& state);
 
   // Integrate to t_end (>= time()). Throws std::runtime_error if the state stops being finite, a joint
@@ -70,19 +99,40 @@ public:
   // simulator then keeps the last good state.
   StepReport advanceTo(double t_end);
 
+  // Takes the layout of a saved state (or a test's): nu segments and the cable out [m] (the first segment
+  // gets the rest). A reset() with as many joints must follow. Throws std::invalid_argument for a layout
+  // the cable cannot have (no segment, a first segment not longer than 0, cable out beyond the winch's
+  // limits while it is enabled).
+  void restoreLayout(int segments, double cable_out);
+
+  // The right-hand side dy/dt at (t, y) for the current data: no side effect (only the solver's
+  // workspace changes), so equal arguments give bit-identical results whatever was evaluated before.
+  void derivative(double t, const StateVector& y, StateVector& dydt) const;
+
+  // The data that changes while running. Commands act from time(); the currents are validated first
+  // (std::invalid_argument naming the field).
+  const ChainData& data() const { return data_; }
+  bool command(double rudder, double elevator, double thrust);  // true if something saturated
+  void resetActuators(double t);                                // fins centred, no thrust, from time t [s]
+  void setCurrent(const Eigen::Vector3d& current_W);
+  void setCurrentProfile(const std::vector<CurrentSample>& profile);
+
   // Winch: the commanded payout rate [m/s] (positive pays out), saturated at +-max_rate (returned).
   // Throws std::invalid_argument if it is not finite or the winch is disabled. The rate follows the
   // command with the winch's response time, within max_acceleration, and slows down so as to stop at
   // min_length and max_length.
   double setWinchCommand(double payout_rate);
-  double winchCommand() const { return winch_command_; }
+  double winchCommand() const { return data_.winch_command; }
   double cableLength() const;  // [m] cable out
   double payoutRate() const;   // [m/s] its rate of change now
   const WinchParams& winch() const { return winch_; }
 
   double time() const { return t_; }
   ChainState state() const;
+  const StateVector& stateVector() const { return y_; }  // the integrator's state, StateLayout
   ShipEndState shipEnd() const { return ship_(t_); }
+  // The element lengths now (the winch changes the layout): geometry().segments is nu now.
+  const ChainGeometry& geometry() const { return data_.geometry; }
   // Joints x_1 .. x_{nu+2} (3 x (nu+2)) with the tow point first.
   Eigen::Matrix3Xd jointPositions() const;
   // T_1 .. T_{nu+1} at the current state (force on element lambda at its forward joint) [N].
@@ -94,30 +144,34 @@ public:
   // Kinematics of element e (0 .. nu) at the current state; e = nu is the vehicle.
   ElementKinematics elementKinematics(int e) const;
 
-  ChainModel& model() { return *model_; }
   const ChainModel& model() const { return *model_; }
 
 private:
-  using StateVector = std::vector<double>;
-  void rhs(const StateVector& y, StateVector& dydt, double t);
+  StateLayout layout() const { return StateLayout{ data_.geometry.jointCount() }; }
+  // The element lengths for the state y at time t: the first segment from the cable out, its rates from
+  // the winch law (the model's as configured while the winch is off).
+  ChainGeometry geometryOf(const StateVector& y) const;
   double winchAcceleration(double length, double rate) const;  // [m/s^2] the winch's rate law
-  void syncWinch(const StateVector& y);                        // the model's first segment from the winch entries of y
-  bool remesh(double t);  // split or merge the first segment; true if the layout changed
+  bool remesh(double t);                                       // split or merge the first segment
+  void splitFirstSegment(double t);
+  void mergeFirstSegment();
   void project(double t);
   void refreshOutputs();
-  double lengthErrorOf(const StateVector& y, double t) const;
-  double largestRelativeSpeed(double t) const;  // [m/s] fastest joint relative to the tow point
+  void stepOnce(double t_end, double winch_step, StepReport& report);  // one accepted or rejected step
+  double largestRelativeSpeed(double t) const;                         // [m/s] fastest joint relative to the tow point
 
-  std::shared_ptr<ChainModel> model_;
+  struct Steppers;  // Boost.Odeint's, sized for the state (re-made when the winch re-meshes)
+  std::shared_ptr<const ChainModel> model_;
   ShipMotion ship_;
-  ChainSolver solver_;
+  std::unique_ptr<Steppers> steppers_;
+  mutable ChainSolver solver_;  // workspace only
+  WinchParams winch_;
+  ChainData data_;
   double t_ = 0.0;
   double dt_ = 0.0;  // next adaptive step
-  StateVector y_;    // [x_2..x_{nu+2}, v_2..v_{nu+2}, cable out L_w, payout rate]
+  StateVector y_;    // StateLayout
   StateVector dydt_;
   Eigen::Matrix3Xd tensions_, accelerations_;
-  WinchParams winch_;
-  double winch_command_ = 0.0;  // [m/s]
 };
 
 }  // namespace tow_sim

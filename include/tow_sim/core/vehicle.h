@@ -110,6 +110,7 @@ struct VehicleOutputs
   FinPairLoads rudder_loads, elevator_loads;
 };
 
+// Constant after construction: the fin angles and the thrust are Actuators, held by the running chain.
 class Vehicle : public EndBody
 {
 public:
@@ -119,26 +120,28 @@ public:
   double length() const override { return p_.tail_from_bail; }
   // The hull's ends touch the seabed: the nose and the tail point.
   std::vector<double> contactFractions() const override { return { -p_.nose_from_bail / p_.tail_from_bail, 1.0 }; }
-  void dynamics(double t, const ElementKinematics& k, const Environment& env, BodyDynamics& out) const override;
+  void dynamics(double t, const ElementKinematics& k, const Environment& env, const Actuators& actuators,
+                BodyDynamics& out) const override;
 
+  // Fins centred on servos with this vehicle's limits, no thrust, at time t [s].
+  Actuators restingActuators(double t) const override;
   // Fin and thrust commands from time t on; values beyond the limits saturate. Returns true when
   // something saturated (the caller may warn).
-  bool command(double t, double rudder, double elevator, double thrust);
-  void resetActuators(double t);  // fins centred, no thrust
+  bool command(Actuators& actuators, double t, double rudder, double elevator, double thrust) const override;
 
-  VehicleOutputs outputs(double t, const ElementKinematics& k, const Environment& env) const;
+  VehicleOutputs outputs(double t, const ElementKinematics& k, const Environment& env,
+                         const Actuators& actuators) const;
   const VehicleParams& params() const { return p_; }
   const Matrix6d& addedMassB() const { return added_mass_b_; }  // about the CG, body axes
 
 private:
   struct Loads;
-  Loads loads(double t, const ElementKinematics& k, const Environment& env, const BodyFrame& frame) const;
+  Loads loads(double t, const ElementKinematics& k, const Environment& env, const Actuators& actuators,
+              const BodyFrame& frame) const;
 
   VehicleParams p_;
   double smoothing_speed_;
   Matrix6d added_mass_b_;
-  FinServo rudder_servo_, elevator_servo_;
-  double thrust_ = 0.0;
 };
 
 }  // namespace tow_sim
