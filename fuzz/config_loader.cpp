@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "tow_sim/core/scenario.h"
+#include "tow_sim/scenario/scenario.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
 {

@@ -9,12 +9,42 @@
 #include <exception>
 #include <memory>
 
-#include "tow_sim/core/simulator.h"
-#include "tow_sim/core/vehicle.h"
+#include "tow_sim/core/tow_run.h"
+#include "tow_sim/scenario/ship_path.h"
+
+namespace
+{
+using namespace tow_sim;
+
+// The ship straight along +x at 2 m/s, the tow point at its reference point; a straight initial line;
+// +0.2 rad of elevator two minutes before the end.
+Scenario demoScenario(double duration)
+{
+  Scenario sc;
+  sc.tow_point_S.setZero();
+  Manoeuvre straight;
+  straight.speed = 2.0;
+  straight.duration = duration + 60.0;
+  sc.manoeuvres = { straight };
+  sc.initial.type = InitialShape::Type::kLine;
+  sc.initial.line_direction_S = Eigen::Vector3d(-1.0, 0.0, -0.5);
+  CommandEvent step;
+  step.t = duration - 120.0;
+  step.elevator = 0.2;
+  sc.commands = { step };
+  sc.duration = duration;
+  return sc;
+}
+
+void printLine(const TowSnapshot& s)
+{
+  std::printf("%7.0f %10.2f %10.2f %11.2f %11.3f %11.1f %13.1f %9.2f\n", s.t, s.depth, s.pitch * 180.0 / M_PI,
+              s.layback, s.diversion.offset, s.tension_ship, s.tension_vehicle, s.vehicle.elevator * 180.0 / M_PI);
+}
+}  // namespace
 
 int main(int argc, char** argv)
 {
-  using namespace tow_sim;
   const double duration = argc > 1 ? std::atof(argv[1]) : 900.0;
   if (!(duration >= 60.0 && duration <= 1e6))
   {
@@ -23,44 +53,32 @@ int main(int argc, char** argv)
   }
   try
   {
-    const CableParams cable;
-    const Environment env;
-    const NumericsParams numerics;
-    auto vehicle = std::make_shared<Vehicle>(VehicleParams(), numerics);
-    auto model = std::make_shared<ChainModel>(cable, vehicle, env, numerics);
-    const Eigen::Vector3d ship_velocity(2.0, 0.0, 0.0);
-    Simulator sim(model, constantVelocityShip(Eigen::Vector3d::Zero(), ship_velocity));
-    sim.reset(0.0, straightChain(*model, Eigen::Vector3d::Zero(), Eigen::Vector3d(-1.0, 0.0, -0.5), ship_velocity));
-
+    const Scenario sc = demoScenario(duration);
+    TowRun run(sc.config, std::make_shared<ShipHistory>(buildShipPath(sc)), sc.initial);
+    run.schedule(sc.commands);
+    run.start(0.0);
+    const CableParams& cable = sc.config.cable;
     std::printf(
         "tow_sim offline demo: %.0f m cable (%d segments, D = %.3f m, %.2f kg/m), %.0f kg vehicle, ship at "
         "%.1f m/s; elevator +0.2 rad at t = %.0f s\n",
-        cable.length, cable.segments, cable.diameter, cable.mass_per_length, vehicle->params().mass,
-        ship_velocity.norm(), duration - 120.0);
+        cable.length, cable.segments, cable.diameter, cable.mass_per_length, sc.config.vehicle.mass,
+        sc.manoeuvres.front().speed, duration - 120.0);
     std::printf("%7s %10s %10s %11s %11s %11s %13s %9s\n", "t [s]", "depth [m]", "pitch [deg]", "layback [m]",
                 "divers. [m]", "T_ship [N]", "T_vehicle [N]", "elev [deg]");
     const auto wall_start = std::chrono::steady_clock::now();
-    const int nu = cable.segments;
     int steps = 0;
+    TowSnapshot s;
     for (double t = 60.0; t <= duration + 1e-9; t += 60.0)
     {
-      if (std::abs(t - (duration - 60.0)) < 1e-9)
-        sim.command(0.0, 0.2, 0.0);
-      steps += sim.advanceTo(t).steps;
-      const VehicleOutputs o =
-          vehicle->outputs(sim.time(), sim.elementKinematics(nu), sim.data().environment, sim.data().actuators);
-      const ShipEndState ship = sim.shipEnd();
-      const Diversion div = lateralDiversion(o.p_cg_W, o.v_cg_W, ship, Eigen::Vector3d::UnitX());
-      std::printf("%7.0f %10.2f %10.2f %11.2f %11.3f %11.1f %13.1f %9.2f\n", sim.time(), o.depth,
-                  o.pitch * 180.0 / M_PI, ship.p_W.x() - o.p_cg_W.x(), div.offset, sim.tensions().col(0).norm(),
-                  sim.tensions().col(nu).norm(), o.elevator * 180.0 / M_PI);
+      steps += run.advanceTo(t).steps;
+      printLine(s = run.snapshot());
     }
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-    const Eigen::Vector3d tow_force = -sim.tensions().col(0);
+    const Eigen::Vector3d tow_force = -s.tensions.col(0);
     std::printf(
         "\ntow force on the ship: %.1f N aft, %.1f N down; largest relative length error %.2e; %d steps; "
         "%.0fx faster than real time\n",
-        -tow_force.x(), -tow_force.z(), sim.lengthError(), steps, sim.time() / wall);
+        -tow_force.x(), -tow_force.z(), run.simulator().lengthError(), steps, s.t / wall);
     return 0;
   }
   catch (const std::exception& error)

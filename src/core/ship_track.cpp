@@ -1,6 +1,7 @@
 #include "tow_sim/core/ship_track.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace tow_sim
@@ -120,6 +121,67 @@ ShipEndState ShipTrack::operator()(double t) const
   out.v_W = (d00 * P0 + d10 * V0 + d20 * A0 + d01 * P1 + d11 * V1 + d21 * A1) / h;
   out.a_W = (s00 * P0 + s10 * V0 + s20 * A0 + s01 * P1 + s11 * V1 + s21 * A1) / (h * h);
   return out;
+}
+
+ShipHistory::ShipHistory(double max_extrapolation, size_t capacity) : track_(max_extrapolation, capacity) {}
+
+bool ShipHistory::add(double t, const Eigen::Vector3d& tow_p_W, const Eigen::Vector3d& tow_v_W, const ShipPose& pose)
+{
+  if (!std::isfinite(pose.x) || !std::isfinite(pose.y) || !std::isfinite(pose.heading) || !std::isfinite(pose.speed))
+    return false;
+  if (!track_.add(t, tow_p_W, tow_v_W))
+    return false;
+  ShipPose p = pose;
+  // Unwrap: within half a turn of the previous heading (a continuous heading is kept as it is).
+  if (!poses_.empty() && std::abs(p.heading - poses_.back().heading) > M_PI)
+    p.heading = poses_.back().heading + std::remainder(p.heading - poses_.back().heading, 2.0 * M_PI);
+  // The track may have dropped its oldest sample to stay within its capacity: keep the poses alongside.
+  while (!times_.empty() && times_.front() < track_.oldestTime())
+  {
+    times_.pop_front();
+    poses_.pop_front();
+  }
+  times_.push_back(t);
+  poses_.push_back(p);
+  return true;
+}
+
+ShipPose ShipHistory::pose(double t) const
+{
+  if (times_.empty())
+    return ShipPose();
+  const auto upper = std::upper_bound(times_.begin(), times_.end(), t);
+  const size_t next = std::min(static_cast<size_t>(upper - times_.begin()), times_.size() - 1);
+  if (upper == times_.begin())
+    return poses_.front();
+  if (upper == times_.end())
+    return poses_.back();
+  const size_t i = static_cast<size_t>(upper - times_.begin());
+  const double w = (t - times_[i - 1]) / (times_[i] - times_[i - 1]);
+  const ShipPose &a = poses_[i - 1], &b = poses_[i];
+  ShipPose out;
+  out.x = (1.0 - w) * a.x + w * b.x;
+  out.y = (1.0 - w) * a.y + w * b.y;
+  out.heading = (1.0 - w) * a.heading + w * b.heading;
+  out.speed = poses_[next].speed;
+  return out;
+}
+
+void ShipHistory::clear()
+{
+  track_.clear();
+  times_.clear();
+  poses_.clear();
+}
+
+void ShipHistory::dropBefore(double t)
+{
+  track_.dropBefore(t);
+  while (times_.size() > 2 && times_[1] <= t)
+  {
+    times_.pop_front();
+    poses_.pop_front();
+  }
 }
 
 }  // namespace tow_sim

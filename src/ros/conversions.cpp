@@ -95,5 +95,81 @@ std_msgs::ColorRGBA tensionColor(double tension, double full_scale, bool slack)
   return c;
 }
 
+tow_sim::CableState toCableState(const TowSnapshot& s, const std_msgs::Header& header)
+{
+  tow_sim::CableState state;
+  state.header = header;
+  for (Eigen::Index j = 0; j < s.joints.cols(); ++j)
+    state.joints.push_back(toPoint(s.joints.col(j)));
+  for (Eigen::Index j = 0; j < s.tensions.cols(); ++j)
+  {
+    state.tension.push_back(s.tensions.col(j).norm());
+    state.tension_vector.push_back(toVector3(s.tensions.col(j)));
+  }
+  state.slack.assign(s.slack.begin(), s.slack.end());
+  state.tension_ship = s.tension_ship;
+  state.tension_vehicle = s.tension_vehicle;
+  state.vehicle_depth = s.depth;
+  state.layback = s.layback;
+  state.diversion = s.diversion.offset;
+  state.diversion_rate = s.diversion.rate;
+  state.cable_length = s.cable_length;
+  state.payout_rate = s.payout_rate;
+  state.seabed_present = s.seabed_present;
+  state.seabed_contact.assign(s.joint_contact.begin(), s.joint_contact.end());
+  if (s.seabed_present)
+    state.vehicle_altitude = s.vehicle_altitude;
+  state.vehicle_on_seabed = s.vehicle_on_seabed;
+  state.max_length_error = s.max_length_error;
+  return state;
+}
+
+nav_msgs::Odometry toVehicleOdometry(const TowSnapshot& s, const std_msgs::Header& header,
+                                     const std::string& child_frame)
+{
+  const Eigen::Matrix3d R = s.attitude.toRotationMatrix();
+  nav_msgs::Odometry odom;
+  odom.header = header;
+  odom.child_frame_id = child_frame;
+  odom.pose.pose.position = toPoint(s.vehicle.p_cg_W);
+  odom.pose.pose.orientation = toQuaternion(s.attitude);
+  odom.twist.twist.linear = toVector3(R.transpose() * s.vehicle.v_cg_W);
+  odom.twist.twist.angular = toVector3(R.transpose() * s.vehicle.omega_W);
+  return odom;
+}
+
+geometry_msgs::TransformStamped toVehicleTransform(const TowSnapshot& s, const std_msgs::Header& header,
+                                                   const std::string& child_frame)
+{
+  geometry_msgs::TransformStamped tf;
+  tf.header = header;
+  tf.child_frame_id = child_frame;
+  tf.transform.translation = toVector3(s.vehicle.p_cg_W);
+  tf.transform.rotation = toQuaternion(s.attitude);
+  return tf;
+}
+
+tow_sim::FinLoads toFinLoads(const TowSnapshot& s, const std_msgs::Header& header, const std::string& vehicle_frame)
+{
+  const VehicleOutputs& o = s.vehicle;
+  tow_sim::FinLoads loads;
+  loads.header = header;
+  loads.header.frame_id = vehicle_frame;
+  loads.rudder_angle = o.rudder;
+  loads.elevator_angle = o.elevator;
+  loads.thrust = o.thrust;
+  loads.rudder_angle_of_attack = o.rudder_loads.angle_of_attack;
+  loads.elevator_angle_of_attack = o.elevator_loads.angle_of_attack;
+  loads.rudder_lift = toVector3(o.rudder_loads.lift_B);
+  loads.rudder_drag = toVector3(o.rudder_loads.drag_B);
+  loads.rudder_moment = toVector3(o.rudder_loads.moment_cg_B);
+  loads.rudder_hinge_moment = o.rudder_loads.hinge_moment;
+  loads.elevator_lift = toVector3(o.elevator_loads.lift_B);
+  loads.elevator_drag = toVector3(o.elevator_loads.drag_B);
+  loads.elevator_moment = toVector3(o.elevator_loads.moment_cg_B);
+  loads.elevator_hinge_moment = o.elevator_loads.hinge_moment;
+  return loads;
+}
+
 }  // namespace ros_conv
 }  // namespace tow_sim

@@ -124,6 +124,17 @@ SimulationConfig readConfig(const ros::NodeHandle& pnh)
   }
 }
 
+// The node's initial_shape and initial_angle as the run's policy (a line straight astern, initial_angle
+// below the horizontal, is also the fallback when no equilibrium is found).
+InitialShape initialShape(const NodeParams& p)
+{
+  InitialShape shape;
+  shape.type = p.initial_shape == "line"      ? InitialShape::Type::kLine
+               : p.initial_shape == "hanging" ? InitialShape::Type::kHanging
+                                              : InitialShape::Type::kEquilibrium;
+  shape.line_direction_S = Eigen::Vector3d(-std::cos(p.initial_angle), 0.0, -std::sin(p.initial_angle));
+  return shape;
+}
 }  // namespace
 
 TowSimNode::TowSimNode(ros::NodeHandle nh, ros::NodeHandle pnh)
@@ -131,18 +142,13 @@ TowSimNode::TowSimNode(ros::NodeHandle nh, ros::NodeHandle pnh)
       pnh_(pnh),
       params_(readNodeParams(pnh)),
       config_(readConfig(pnh)),
-      track_(params_.max_extrapolation, kTrackCapacity)
+      ship_(std::make_shared<ShipHistory>(params_.max_extrapolation, kTrackCapacity)),
+      run_(config_, ship_, initialShape(params_))
 {
   odometry_limits_.world_frame = params_.world_frame;
   odometry_limits_.tow_point_S = params_.tow_point_S;
   odometry_limits_.max_ship_speed = params_.max_ship_speed;
   odometry_limits_.max_age = params_.max_odom_age;
-  vehicle_ = std::make_shared<Vehicle>(config_.vehicle, config_.numerics);
-  if (config_.seabed.type != SeabedParams::Type::kNone)
-    seabed_ = std::make_shared<Seabed>(config_.seabed);
-  model_ = std::make_shared<ChainModel>(config_.cable, vehicle_, config_.environment, config_.numerics, seabed_);
-  sim_ = std::make_unique<Simulator>(
-      model_, [this](double time) { return track_(time); }, config_.winch);
   diagnostics_.setHardwareID("tow_sim");
   diagnostics_.add("simulation", this, &TowSimNode::diagnose);
 
@@ -196,47 +202,18 @@ void TowSimNode::printStatus()
     ROS_INFO("waiting for ship odometry on %s", odom_sub_.getTopic().c_str());
     return;
   }
-  const VehicleOutputs o = vehicle_->outputs(sim_->time(), sim_->elementKinematics(sim_->geometry().segments),
-                                             sim_->data().environment, sim_->data().actuators);
-  const Diversion d = lateralDiversion(o.p_cg_W, o.v_cg_W, sim_->shipEnd(), track_direction_);
   ROS_INFO(
       "t %7.1f s | ship %4.2f m/s | vehicle depth %6.1f m, diversion %6.2f m | tension ship %7.0f N, "
       "vehicle %6.0f N",
-      sim_->time(), sim_->shipEnd().v_W.norm(), o.depth, d.offset, sim_->tensions().col(0).norm(),
-      sim_->tensions().col(sim_->geometry().segments).norm());
+      last_.t, last_.tow_point.v_W.norm(), last_.depth, last_.diversion.offset, last_.tension_ship,
+      last_.tension_vehicle);
 }
 
 void TowSimNode::start(double t)
 {
-  const ShipEndState ship = track_(t);
-  const Eigen::Vector3d heading(track_direction_.x(), track_direction_.y(), 0.0);
-  Eigen::Vector3d direction = -Eigen::Vector3d::UnitZ();
-  if (params_.initial_shape != "hanging")
-    direction = -std::cos(params_.initial_angle) * heading - std::sin(params_.initial_angle) * Eigen::Vector3d::UnitZ();
-  sim_->resetActuators(t);
-  // The initial shapes know nothing of the seabed: joints below it are raised onto it.
-  auto lift = [this](ChainState state)
-  {
-    if (seabed_)
-      liftAboveSeabed(*seabed_, state);
-    return state;
-  };
-  if (params_.initial_shape == "equilibrium")
-  {
-    try
-    {
-      sim_->reset(t, lift(steadyTowEquilibrium(*model_, sim_->data(), t, ship.p_W, ship.v_W).state));
-      started_ = true;
-      attitude_.reset();
-      return;
-    }
-    catch (const std::runtime_error& e)
-    {
-      ROS_WARN_THROTTLE(5.0, "tow_sim: %s; starting from a straight line instead", e.what());
-    }
-  }
-  sim_->reset(t, lift(straightChain(sim_->geometry(), ship.p_W, direction, ship.v_W)));
-  attitude_.reset();
+  const std::string warning = run_.start(t);
+  if (!warning.empty())
+    ROS_WARN_THROTTLE(5.0, "tow_sim: %s", warning.c_str());
   started_ = true;
 }
 
@@ -244,7 +221,7 @@ void TowSimNode::onOdometry(const nav_msgs::Odometry::ConstPtr& msg)
 {
   const ros::Time now = ros::Time::now();
   const ros::Time stamp = msg->header.stamp.isZero() ? now : msg->header.stamp;
-  if (!started_ && track_.empty())
+  if (!started_ && ship_->empty())
     time_origin_ns_ = static_cast<int64_t>(stamp.toNSec()) - static_cast<int64_t>((params_.odom_delay + 1.0) * 1e9);
   const auto& pose = msg->pose.pose;
   const auto& twist = msg->twist.twist;
@@ -255,18 +232,23 @@ void TowSimNode::onOdometry(const nav_msgs::Odometry::ConstPtr& msg)
   in.q_wxyz = Eigen::Vector4d(pose.orientation.w, pose.orientation.x, pose.orientation.y, pose.orientation.z);
   in.v_S = Eigen::Vector3d(twist.linear.x, twist.linear.y, twist.linear.z);
   in.w_S = Eigen::Vector3d(twist.angular.x, twist.angular.y, twist.angular.z);
-  const OdometryResult r = checkOdometry(in, odometry_limits_, track_, relative(now));
+  const OdometryResult r = checkOdometry(in, odometry_limits_, ship_->track(), relative(now));
   if (!r.accepted)
   {
     ++rejected_messages_;
     ROS_WARN_THROTTLE(2.0, "tow_sim: rejected ship odometry: %s", r.reason.c_str());
     return;
   }
-  track_.add(in.t, r.tow_p_W, r.tow_v_W);
-  ship_attitude_ = r.q_WS;
-  const Eigen::Vector3d heading = r.q_WS * Eigen::Vector3d::UnitX();
-  if (heading.head<2>().norm() > 1e-6)
-    track_direction_ = Eigen::Vector3d(heading.x(), heading.y(), 0.0).normalized();
+  // The ship's heading: of its x axis in the horizontal plane (kept when the axis is vertical).
+  const Eigen::Vector3d x_axis = r.q_WS * Eigen::Vector3d::UnitX();
+  ShipPose ship_pose;
+  ship_pose.x = in.p_W.x();
+  ship_pose.y = in.p_W.y();
+  ship_pose.heading = x_axis.head<2>().norm() > 1e-6 ? std::atan2(x_axis.y(), x_axis.x())
+                      : ship_->empty()               ? 0.0
+                                                     : ship_->pose(ship_->newestTime()).heading;
+  ship_pose.speed = in.v_S.norm();
+  ship_->add(in.t, r.tow_p_W, r.tow_v_W, ship_pose);
   last_odom_wall_ = ros::WallTime::now().toSec();
   if (!started_)
   {
@@ -289,7 +271,7 @@ void TowSimNode::onFinCommand(const tow_sim::FinCommand::ConstPtr& msg)
     ROS_WARN_THROTTLE(2.0, "tow_sim: fins/command ignored: no ship odometry yet");
     return;
   }
-  if (sim_->command(msg->rudder, msg->elevator, msg->thrust))
+  if (run_.command(msg->rudder, msg->elevator, msg->thrust))
     ROS_WARN_THROTTLE(2.0,
                       "tow_sim: fins/command saturated: |rudder| <= %.3f rad, |elevator| <= %.3f rad, |thrust| "
                       "<= %.0f N",
@@ -308,7 +290,7 @@ void TowSimNode::onCurrent(const geometry_msgs::Vector3Stamped::ConstPtr& msg)
   }
   try
   {
-    sim_->setCurrent(Eigen::Vector3d(msg->vector.x, msg->vector.y, msg->vector.z));
+    run_.setCurrent(Eigen::Vector3d(msg->vector.x, msg->vector.y, msg->vector.z));
   }
   catch (const std::invalid_argument& e)
   {
@@ -335,7 +317,7 @@ void TowSimNode::onCurrentProfile(const tow_sim::CurrentProfile::ConstPtr& msg)
         CurrentSample{ msg->depth[i], Eigen::Vector3d(msg->velocity[i].x, msg->velocity[i].y, msg->velocity[i].z) });
   try
   {
-    sim_->setCurrentProfile(profile);
+    run_.setCurrentProfile(profile);
   }
   catch (const std::invalid_argument& e)
   {
@@ -352,7 +334,7 @@ void TowSimNode::onWinchCommand(const std_msgs::Float64::ConstPtr& msg)
   }
   try
   {
-    const double applied = sim_->setWinchCommand(msg->data);
+    const double applied = run_.setWinchCommand(msg->data);
     if (applied != msg->data)
       ROS_WARN_THROTTLE(2.0, "tow_sim: winch/command %.3f m/s saturated at %.3f m/s (winch.max_rate)", msg->data,
                         applied);
@@ -366,7 +348,7 @@ void TowSimNode::onWinchCommand(const std_msgs::Float64::ConstPtr& msg)
 
 bool TowSimNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res)
 {
-  if (track_.empty())
+  if (ship_->empty())
   {
     res.success = false;
     res.message = "no ship odometry yet";
@@ -374,7 +356,7 @@ bool TowSimNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Respons
   }
   diverging_ = false;
   restart_walls_.clear();
-  start(started_ ? sim_->time() : track_.newestTime());
+  start(started_ ? run_.time() : ship_->newestTime());
   res.success = true;
   res.message = "restarted from the initial shape (" + params_.initial_shape + ") at the current ship pose";
   return true;
@@ -401,43 +383,42 @@ void TowSimNode::physicsTick(const ros::TimerEvent&)
   holding_ = false;
   if (!started_ || paused_ || diverging_)
     return;
-  if (sim_->time() < track_.oldestTime())
+  if (run_.time() < ship_->oldestTime())
   {
     // Only after more than kTrackCapacity odometry messages without a physics tick (a very long pause).
     ROS_WARN(
         "tow_sim: the simulation (t = %.1f s) is older than the ship odometry kept (from %.1f s): laying the "
         "cable out again at the newest odometry",
-        sim_->time(), track_.oldestTime());
-    start(track_.newestTime());
+        run_.time(), ship_->oldestTime());
+    start(ship_->newestTime());
     return;
   }
   const double wanted = relative(now) - params_.odom_delay;
-  const double available = track_.newestTime() + params_.max_extrapolation;
+  const double available = ship_->newestTime() + params_.max_extrapolation;
   holding_ = wanted > available;
   if (holding_)
     ROS_WARN_THROTTLE(5.0, "tow_sim: ship odometry is %.1f s old: holding the simulation until it resumes",
-                      wanted - track_.newestTime());
+                      wanted - ship_->newestTime());
   // Bounded work per tick, so callbacks are never starved; the lag shows in diagnostics.
-  const double target = std::min({ wanted, available, sim_->time() + 0.5 });
-  lag_ = wanted - sim_->time();
-  if (target <= sim_->time())
+  const double target = std::min({ wanted, available, run_.time() + 0.5 });
+  lag_ = wanted - run_.time();
+  if (target <= run_.time())
     return;
   const ros::WallTime wall_start = ros::WallTime::now();
-  const double t0 = sim_->time();
+  const double t0 = run_.time();
   try
   {
-    const StepReport report = sim_->advanceTo(target);
+    const StepReport report = run_.advanceTo(target);
     rejected_steps_ += report.rejected;
-    max_length_error_ = report.max_length_error;
   }
   catch (const std::runtime_error& e)
   {
     restartAfterDivergence(e.what());
   }
-  track_.dropBefore(sim_->time());  // the simulation never looks back: the history stays short
+  ship_->dropBefore(run_.time());  // the simulation never looks back: the history stays short
   const double wall = (ros::WallTime::now() - wall_start).toSec();
   if (wall > 0.0)
-    realtime_factor_ = 0.9 * realtime_factor_ + 0.1 * ((sim_->time() - t0) / wall);
+    realtime_factor_ = 0.9 * realtime_factor_ + 0.1 * ((run_.time() - t0) / wall);
 }
 
 void TowSimNode::restartAfterDivergence(const std::string& why)
@@ -459,13 +440,13 @@ void TowSimNode::restartAfterDivergence(const std::string& why)
   }
   ROS_ERROR_THROTTLE(5.0, "tow_sim: %s; restarting from the initial shape at the current ship pose (%llu restarts)",
                      why.c_str(), static_cast<unsigned long long>(restarts_));
-  start(sim_->time());
+  start(run_.time());
 }
 
 void TowSimNode::forgetShip(const std::string& why)
 {
   ROS_WARN("tow_sim: %s: laying the cable out again at the next ship odometry", why.c_str());
-  track_.clear();
+  ship_->clear();
   started_ = false;
   holding_ = false;
   last_tf_stamp_ = ros::Time();
@@ -476,98 +457,33 @@ void TowSimNode::publishTick(const ros::TimerEvent&)
   diagnostics_.update();
   if (!started_)
     return;
-  const int nu = sim_->geometry().segments;
-  const ElementKinematics k = sim_->elementKinematics(nu);
-  const VehicleOutputs o = vehicle_->outputs(sim_->time(), k, sim_->data().environment, sim_->data().actuators);
-  const Eigen::Matrix3Xd joints = sim_->jointPositions();
-  const Eigen::Matrix3Xd& tensions = sim_->tensions();
-  if (!joints.allFinite() || !tensions.allFinite() || !o.p_cg_W.allFinite() || !o.v_cg_W.allFinite())
+  TowSnapshot snapshot;
+  try
   {
-    ROS_ERROR_THROTTLE(2.0, "tow_sim: non-finite state; not published");
+    snapshot = run_.snapshot();
+  }
+  catch (const std::runtime_error& e)
+  {
+    ROS_ERROR_THROTTLE(2.0, "tow_sim: %s; not published", e.what());
     return;
   }
+  last_ = snapshot;
+  max_length_error_ = snapshot.max_length_error;
   std_msgs::Header header;
-  header.stamp = absolute(sim_->time());
+  header.stamp = absolute(snapshot.t);
   header.frame_id = params_.world_frame;
-  const ShipEndState ship = sim_->shipEnd();
-  const Diversion d = lateralDiversion(o.p_cg_W, o.v_cg_W, ship, track_direction_);
-
-  tow_sim::CableState state;
-  state.header = header;
-  for (int j = 0; j < joints.cols(); ++j)
-    state.joints.push_back(ros_conv::toPoint(joints.col(j)));
-  for (int j = 0; j <= nu; ++j)
-  {
-    state.tension.push_back(tensions.col(j).norm());
-    state.tension_vector.push_back(ros_conv::toVector3(tensions.col(j)));
-  }
-  for (bool slack : slackFlags(joints, tensions))
-    state.slack.push_back(slack);
-  state.tension_ship = tensions.col(0).norm();
-  state.tension_vehicle = tensions.col(nu).norm();
-  state.vehicle_depth = o.depth;
-  state.layback = (ship.p_W - o.p_cg_W).dot(track_direction_);
-  state.diversion = d.offset;
-  state.diversion_rate = d.rate;
-  state.cable_length = sim_->cableLength();
-  state.payout_rate = sim_->payoutRate();
-  state.seabed_present = seabed_ != nullptr;
-  state.seabed_contact.assign(joints.cols(), false);
-  if (seabed_)
-  {
-    state.vehicle_altitude = seabed_->altitude(o.p_cg_W);
-    for (int j = 1; j < joints.cols(); ++j)
-      state.seabed_contact[j] = seabed_->altitude(joints.col(j)) < 0.0;
-    for (double eta : vehicle_->contactFractions())
-      state.vehicle_on_seabed = state.vehicle_on_seabed || seabed_->altitude(k.pointAt(eta)) < 0.0;
-  }
-  state.max_length_error = max_length_error_;
-  state_pub_.publish(state);
-
-  const Eigen::Quaterniond q = attitude_.update(o.q_WB * Eigen::Vector3d::UnitX());
-  const Eigen::Matrix3d R = q.toRotationMatrix();
-  nav_msgs::Odometry odom;
-  odom.header = header;
-  odom.child_frame_id = params_.vehicle_frame;
-  odom.pose.pose.position = ros_conv::toPoint(o.p_cg_W);
-  odom.pose.pose.orientation = ros_conv::toQuaternion(q);
-  odom.twist.twist.linear = ros_conv::toVector3(R.transpose() * o.v_cg_W);
-  odom.twist.twist.angular = ros_conv::toVector3(R.transpose() * o.omega_W);
-  vehicle_odom_pub_.publish(odom);
-
+  state_pub_.publish(ros_conv::toCableState(snapshot, header));
+  vehicle_odom_pub_.publish(ros_conv::toVehicleOdometry(snapshot, header, params_.vehicle_frame));
   // tf listeners warn about repeated stamps: while the simulation holds (paused, late odometry, a slow
   // physics rate) the transform is sent once per new simulation time only.
   if (header.stamp > last_tf_stamp_)
   {
-    geometry_msgs::TransformStamped tf;
-    tf.header = header;
-    tf.child_frame_id = params_.vehicle_frame;
-    tf.transform.translation = ros_conv::toVector3(o.p_cg_W);
-    tf.transform.rotation = odom.pose.pose.orientation;
-    tf_broadcaster_.sendTransform(tf);
+    tf_broadcaster_.sendTransform(ros_conv::toVehicleTransform(snapshot, header, params_.vehicle_frame));
     last_tf_stamp_ = header.stamp;
   }
-
-  tow_sim::FinLoads loads;
-  loads.header = header;
-  loads.header.frame_id = params_.vehicle_frame;
-  loads.rudder_angle = o.rudder;
-  loads.elevator_angle = o.elevator;
-  loads.thrust = o.thrust;
-  loads.rudder_angle_of_attack = o.rudder_loads.angle_of_attack;
-  loads.elevator_angle_of_attack = o.elevator_loads.angle_of_attack;
-  loads.rudder_lift = ros_conv::toVector3(o.rudder_loads.lift_B);
-  loads.rudder_drag = ros_conv::toVector3(o.rudder_loads.drag_B);
-  loads.rudder_moment = ros_conv::toVector3(o.rudder_loads.moment_cg_B);
-  loads.rudder_hinge_moment = o.rudder_loads.hinge_moment;
-  loads.elevator_lift = ros_conv::toVector3(o.elevator_loads.lift_B);
-  loads.elevator_drag = ros_conv::toVector3(o.elevator_loads.drag_B);
-  loads.elevator_moment = ros_conv::toVector3(o.elevator_loads.moment_cg_B);
-  loads.elevator_hinge_moment = o.elevator_loads.hinge_moment;
-  fin_loads_pub_.publish(loads);
-
+  fin_loads_pub_.publish(ros_conv::toFinLoads(snapshot, header, params_.vehicle_frame));
   if (marker_pub_.getNumSubscribers() > 0)
-    marker_pub_.publish(makeMarkers(*sim_, *vehicle_, o, q, params_, header));
+    marker_pub_.publish(makeMarkers(snapshot, config_.vehicle, run_.seabed(), params_, header));
 }
 
 void TowSimNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)

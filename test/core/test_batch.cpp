@@ -9,12 +9,15 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include "tow_sim/core/scenario.h"
+#include "tow_sim/scenario/batch_run.h"
+#include "tow_sim/scenario/scenario.h"
+#include "tow_sim/scenario/ship_path.h"
 
 namespace tow_sim
 {
@@ -71,14 +74,15 @@ const std::string& outputRoot()
   return root;
 }
 
-// Runs a shipped scenario once per test process (whichever test asks first) and returns its output folder;
-// the run's exit status and log are kept for the tests to assert on.
+// Runs a shipped scenario once per test process (whichever test asks first), in this process through the
+// batch library (runScenario, what tow_sim_batch calls), writing its CSV files into the output folder for
+// the checks and the plot command; status 0, or 3 with the error when the run stopped.
 struct ScenarioRun
 {
   std::string out, log;
   int status = -1;
 };
-const ScenarioRun& runScenario(const std::string& name)
+const ScenarioRun& shippedRun(const std::string& name)
 {
   static std::map<std::string, ScenarioRun> runs;
   auto found = runs.find(name);
@@ -86,15 +90,29 @@ const ScenarioRun& runScenario(const std::string& name)
     return found->second;
   ScenarioRun& r = runs[name];
   r.out = outputRoot() + "/" + name;
-  const std::string scenario = std::string(TOW_SIM_SOURCE_DIR) + "/scenarios/" + name + ".yaml";
-  r.log = run(std::string(TOW_SIM_BATCH_BINARY) + " --scenario " + scenario + " --out " + r.out, &r.status);
+  mkdir(r.out.c_str(), 0755);
+  const Scenario sc = loadScenarioFile(std::string(TOW_SIM_SOURCE_DIR) + "/scenarios/" + name + ".yaml");
+  std::ofstream series(r.out + "/timeseries.csv"), shapes(r.out + "/shapes.csv");
+  std::ofstream(r.out + "/scenario.yaml") << toYaml(sc) << "\n";
+  BatchResult result;
+  try
+  {
+    runScenario(sc, series, shapes, result);
+    r.status = 0;
+  }
+  catch (const std::exception& e)
+  {
+    r.status = 3;
+    r.log = e.what();
+  }
+  r.log += result.start_warning;
   return r;
 }
 
 // The time series of a shipped scenario, run if it has not been yet; fails the test if it is missing.
 std::vector<std::vector<std::string>> timeseries(const std::string& name)
 {
-  const ScenarioRun& r = runScenario(name);
+  const ScenarioRun& r = shippedRun(name);
   EXPECT_EQ(r.status, 0) << r.log;
   const std::string path = r.out + "/timeseries.csv";
   EXPECT_GT(fileSize(path), 0) << path;
@@ -134,7 +152,7 @@ TEST(Batch, EveryScenarioRunsAndWritesTheDocumentedColumns)
   {
     ASSERT_FALSE(outputRoot().empty()) << "cannot make a temporary folder";
     const std::string scenario = std::string(TOW_SIM_SOURCE_DIR) + "/scenarios/" + name + ".yaml";
-    const ScenarioRun& r = runScenario(name);
+    const ScenarioRun& r = shippedRun(name);
     ASSERT_EQ(r.status, 0) << r.log;
     const std::string& out = r.out;
     int status = 0;
@@ -288,7 +306,7 @@ TEST(Batch, ShippedScenariosReproduceTheGoldenOutputs)
                                   "seabed_shoal", "sheared_current", "autopilot_depth_turn", "autopilot_terrain" })
     for (const char* file : { "timeseries.csv", "shapes.csv" })
     {
-      const ScenarioRun& r = runScenario(name);
+      const ScenarioRun& r = shippedRun(name);
       ASSERT_EQ(r.status, 0) << r.log;
       const std::string golden = std::string(TOW_SIM_SOURCE_DIR) + "/test/golden/" + name + "/" + file;
       ASSERT_GT(fileSize(golden), 0) << golden;
@@ -297,6 +315,29 @@ TEST(Batch, ShippedScenariosReproduceTheGoldenOutputs)
       std::printf("golden %s/%s: largest difference %.2e of the column's scale\n", name.c_str(), file, difference);
       EXPECT_LE(difference, 1e-9) << name << "/" << file << ": " << where;
     }
+}
+
+// The tool is a thin adapter: its files are the library's run, byte for byte, plus scenario.yaml.
+TEST(Batch, TheToolWritesWhatTheLibraryRuns)
+{
+  ASSERT_FALSE(outputRoot().empty()) << "cannot make a temporary folder";
+  const ScenarioRun& in_process = shippedRun("report_elevator_step");
+  ASSERT_EQ(in_process.status, 0) << in_process.log;
+  const std::string out = outputRoot() + "/tool_report_elevator_step";
+  int status = -1;
+  const std::string log = run(std::string(TOW_SIM_BATCH_BINARY) + " --scenario " + TOW_SIM_SOURCE_DIR +
+                                  "/scenarios/report_elevator_step.yaml --out " + out,
+                              &status);
+  ASSERT_EQ(status, 0) << log;
+  for (const char* file : { "timeseries.csv", "shapes.csv" })
+  {
+    std::ifstream a(out + "/" + file), b(in_process.out + "/" + file);
+    const std::string tool((std::istreambuf_iterator<char>(a)), std::istreambuf_iterator<char>());
+    const std::string library((std::istreambuf_iterator<char>(b)), std::istreambuf_iterator<char>());
+    EXPECT_FALSE(tool.empty()) << file;
+    EXPECT_TRUE(tool == library) << file;
+  }
+  EXPECT_EQ(loadScenarioFile(out + "/scenario.yaml").duration, 400.0);
 }
 
 TEST(Batch, BadScenariosAreRefusedNamingTheKey)
@@ -345,18 +386,18 @@ ship:
     - {type: straight, speed: 2.0, duration: 100}
 simulation: {duration: 400}
 )"));
-  const ShipPath path = buildShipPath(sc);
-  EXPECT_NEAR(path.poseAt(40.0).z(), 0.5, 1e-9);
-  const double end_heading = path.poseAt(399.0).z();
+  const ShipHistory path = buildShipPath(sc);
+  EXPECT_NEAR(path.pose(40.0).heading, 0.5, 1e-9);
+  const double end_heading = path.pose(399.0).heading;
   EXPECT_NEAR(end_heading, 0.5 - kPi, 0.05);  // turned 180 deg to starboard (yaw-rate lag: a little more)
   // Turning to starboard on a 100 m radius takes the ship about 200 m to the right of its first track.
   const Eigen::Vector2d right(std::sin(0.5), -std::cos(0.5));
   double farthest = 0.0;
-  for (const Eigen::Vector3d& pose : path.pose)
-    farthest = std::max(farthest, right.dot(pose.head<2>()));
+  for (double t = 0.0; t <= 400.0; t += 0.05)
+    farthest = std::max(farthest, right.dot(Eigen::Vector2d(path.pose(t).x, path.pose(t).y)));
   EXPECT_NEAR(farthest, 200.0, 10.0);
   // Tow point acceleration is continuous and the speed held.
-  EXPECT_NEAR(path.tow_point(120.0).v_W.norm(), 2.0, 0.05);
+  EXPECT_NEAR(path.towPoint(120.0).v_W.norm(), 2.0, 0.05);
 }
 
 }  // namespace

@@ -6,7 +6,7 @@
 #include <fstream>
 #include <string>
 
-#include "tow_sim/core/config.h"
+#include "tow_sim/config/config.h"
 
 namespace tow_sim
 {

@@ -11,8 +11,9 @@
 #include <string>
 
 #include "tow_sim/core/equilibrium.h"
-#include "tow_sim/core/scenario.h"
 #include "tow_sim/core/vehicle.h"
+#include "tow_sim/scenario/scenario.h"
+#include "tow_sim/scenario/ship_path.h"
 
 namespace tow_sim
 {
@@ -118,10 +119,10 @@ ship:
     - {type: straight, speed: -1.0, duration: 400}
 simulation: {duration: 240}
 )"));
-  const ShipPath path = buildShipPath(sc);
+  const ShipHistory path = buildShipPath(sc);
   const Tow tow = makeTow(100.0, 20);
-  Simulator sim(tow.model, [&path](double t) { return path.tow_point(t); });
-  const ShipEndState s0 = path.tow_point(0.0);
+  Simulator sim(tow.model, [&path](double t) { return path.towPoint(t); });
+  const ShipEndState s0 = path.towPoint(0.0);
   sim.reset(0.0, steadyTowEquilibrium(*tow.model, 0.0, s0.p_W, s0.v_W).state);
   int slack_samples = 0, slack_while_towing = 0;
   for (int i = 1; i <= 240; ++i)
@@ -225,10 +226,10 @@ TEST(HardRegimes, TwoHourSoakWithRandomManoeuvresAndCommands)
     t += m.duration;
     sc.manoeuvres.push_back(m);
   }
-  const ShipPath path = buildShipPath(sc);
+  const ShipHistory path = buildShipPath(sc);
   const Tow tow = makeTow(300.0, 50);
-  Simulator sim(tow.model, [&path](double time) { return path.tow_point(time); });
-  const ShipEndState s0 = path.tow_point(0.0);
+  Simulator sim(tow.model, [&path](double time) { return path.towPoint(time); });
+  const ShipEndState s0 = path.towPoint(0.0);
   sim.reset(0.0, steadyTowEquilibrium(*tow.model, 0.0, s0.p_W, s0.v_W).state);
   long rss_after_warmup = 0;
   double worst_length = 0.0;

@@ -11,6 +11,7 @@
 #include <deque>
 #include <limits>
 #include <string>
+#include <vector>
 
 namespace tow_sim
 {
@@ -146,6 +147,21 @@ private:
   double integrated_until_ = 0.0;  // [s] stamp of the measurement last integrated
   bool integrated_ = false;
   double integral_ = 0.0;  // [rad] -ki int(e) dt: the integral term's part of the elevator
+};
+
+// The autopilot in a tow run's loop (tow_sim_batch): its gains, its rate and a setpoint schedule.
+struct AutopilotSetpoint
+{
+  double t = 0.0;         // [s] from this time on
+  bool altitude = false;  // false: `value` is a depth [m, positive down]; true: an altitude above the seabed [m]
+  double value = 0.0;     // [m]
+};
+struct AutopilotLoop
+{
+  bool enabled = false;
+  DepthAutopilotParams params;
+  double rate = 10.0;                        // [Hz] fin commands, [0.1, 1000]
+  std::vector<AutopilotSetpoint> setpoints;  // sorted by time; none: hold the first depth
 };
 
 }  // namespace tow_sim

@@ -22,7 +22,7 @@ struct SeabedParams
   {
     kNone,  // no bottom (default)
     kFlat,  // at `depth`
-    kGrid   // from `grid` (read from a file by the configuration loader)
+    kGrid   // from `grid` (read from a file by the configuration loader, loadBathymetryFile)
   };
   Type type = Type::kNone;
   double depth = 200.0;  // [m] flat bottom, (0, 12000]
@@ -38,10 +38,6 @@ struct SeabedParams
 
 // Throws std::invalid_argument naming "<prefix>.<key>", the value and the range.
 void validate(const SeabedParams& seabed, const std::string& prefix = "seabed");
-
-// Reads a grid file: YAML {origin: [x, y], spacing: [dx, dy], depth: [[row at y0], [row at y0+dy], ...]}.
-// Throws std::invalid_argument naming the file and the key.
-BathymetryGrid loadBathymetryFile(const std::string& path);
 
 class Seabed
 {

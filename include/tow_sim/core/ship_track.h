@@ -49,4 +49,42 @@ private:
   std::deque<Sample> samples_;
 };
 
+// The ship's own pose in the horizontal plane and its speed at one time (its reference point, not the
+// tow point).
+struct ShipPose
+{
+  double x = 0.0, y = 0.0;  // [m] world
+  double heading = 0.0;     // [rad] ENU, counter-clockwise from +x
+  double speed = 0.0;       // [m/s] over ground
+};
+
+// What a tow run knows of the ship: the tow point's motion (a ShipTrack) and the ship's pose, from
+// timestamped samples: ship odometry as it arrives, or a scripted path sampled in advance.
+class ShipHistory
+{
+public:
+  explicit ShipHistory(double max_extrapolation = 1.0, size_t capacity = 400);
+
+  // Adds a sample at time t [s]: the tow point's position [m] and velocity [m/s] (world) and the ship's
+  // pose. Returns false and changes nothing unless the ShipTrack takes it (later than the newest, finite).
+  bool add(double t, const Eigen::Vector3d& tow_p_W, const Eigen::Vector3d& tow_v_W, const ShipPose& pose);
+
+  ShipEndState towPoint(double t) const { return track_(t); }
+  // The pose at time t: position and heading linear between samples (the heading unwrapped, so it turns
+  // the short way), the speed of the first sample after t; the first or the newest pose beyond them.
+  ShipPose pose(double t) const;
+  const ShipTrack& track() const { return track_; }
+
+  bool empty() const { return track_.empty(); }
+  double newestTime() const { return track_.newestTime(); }
+  double oldestTime() const { return track_.oldestTime(); }
+  void clear();
+  void dropBefore(double t);  // as ShipTrack::dropBefore
+
+private:
+  ShipTrack track_;
+  std::deque<double> times_;
+  std::deque<ShipPose> poses_;
+};
+
 }  // namespace tow_sim

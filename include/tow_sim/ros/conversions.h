@@ -1,14 +1,22 @@
-// Conversions at the ROS edge: parameter trees to YAML (so the core's loader reads them), Eigen to
-// messages, and the tension colour scale.
+// Conversions at the ROS edge: parameter trees to YAML (so the configuration loader reads them), Eigen
+// to messages, a tow run's snapshot to the node's messages, and the tension colour scale. Stateless; tested
+// without roscore.
 #pragma once
 
 #include <geometry_msgs/Point.h>
 #include <geometry_msgs/Quaternion.h>
+#include <geometry_msgs/TransformStamped.h>
 #include <geometry_msgs/Vector3.h>
+#include <nav_msgs/Odometry.h>
 #include <std_msgs/ColorRGBA.h>
 #include <xmlrpcpp/XmlRpcValue.h>
 #include <yaml-cpp/yaml.h>
 #include <Eigen/Geometry>
+#include <string>
+
+#include "tow_sim/CableState.h"
+#include "tow_sim/FinLoads.h"
+#include "tow_sim/core/tow_run.h"
 
 namespace tow_sim
 {
@@ -24,6 +32,15 @@ geometry_msgs::Quaternion toQuaternion(const Eigen::Quaterniond& q);
 // Tension colour scale of the cable marker: blue at 0 N, green at half of full_scale, red at and above
 // full_scale; magenta for a joint in compression (slack).
 std_msgs::ColorRGBA tensionColor(double tension, double full_scale, bool slack);
+
+// A snapshot as cable/state, vehicle/odom (CG pose in header.frame_id, twist in the vehicle frame
+// child_frame: the published attitude), the tf to the vehicle, and vehicle/fin_loads (body axes).
+tow_sim::CableState toCableState(const TowSnapshot& s, const std_msgs::Header& header);
+nav_msgs::Odometry toVehicleOdometry(const TowSnapshot& s, const std_msgs::Header& header,
+                                     const std::string& child_frame);
+geometry_msgs::TransformStamped toVehicleTransform(const TowSnapshot& s, const std_msgs::Header& header,
+                                                   const std::string& child_frame);
+tow_sim::FinLoads toFinLoads(const TowSnapshot& s, const std_msgs::Header& header, const std::string& vehicle_frame);
 
 }  // namespace ros_conv
 }  // namespace tow_sim

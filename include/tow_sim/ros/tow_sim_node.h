@@ -1,6 +1,6 @@
-// The ROS adapter around the core: ship odometry and fin commands in; cable state, markers, vehicle
-// odometry, fin loads, tf and diagnostics out. Time comes from ros::Time (wall or /clock); the
-// simulation runs `odom_delay` behind it so that the ship's motion is interpolated between odometry
+// The ROS adapter around a TowRun: ship odometry and fin commands in; cable state, markers, vehicle
+// odometry, fin loads, tf and diagnostics out (converted from the run's snapshots). Time comes from ros::Time (wall or
+// /clock); the simulation runs `odom_delay` behind it so that the ship's motion is interpolated between odometry
 // messages, and extrapolates at most `max_extrapolation` past the newest one before it holds.
 #pragma once
 
@@ -21,11 +21,10 @@
 
 #include "tow_sim/CurrentProfile.h"
 #include "tow_sim/FinCommand.h"
-#include "tow_sim/core/config.h"
+#include "tow_sim/config/config.h"
 #include "tow_sim/core/odometry_check.h"
 #include "tow_sim/core/ship_track.h"
-#include "tow_sim/core/simulator.h"
-#include "tow_sim/core/vehicle.h"
+#include "tow_sim/core/tow_run.h"
 
 namespace tow_sim
 {
@@ -89,22 +88,17 @@ private:
   ros::NodeHandle nh_, pnh_;
   NodeParams params_;
   SimulationConfig config_;
-  std::shared_ptr<Vehicle> vehicle_;
-  std::shared_ptr<ChainModel> model_;
-  std::shared_ptr<const Seabed> seabed_;  // null without one
-  std::unique_ptr<Simulator> sim_;
-  ShipTrack track_;
+  std::shared_ptr<ShipHistory> ship_;  // the accepted odometry, kept from the simulation's time on
+  TowRun run_;
   OdometryLimits odometry_limits_;
-  AttitudeHold attitude_;
+  TowSnapshot last_;  // the last published outputs (the status line prints them)
 
   int64_t time_origin_ns_ = 0;
   ros::Time last_tf_stamp_;
   ros::Time last_clock_;  // ros::Time::now() at the previous physics tick, to see the clock jump back
-  bool started_ = false;
+  bool started_ = false;  // false until the first odometry, and again after the clock jumps back
   bool paused_ = false;
-  Eigen::Quaterniond ship_attitude_ = Eigen::Quaterniond::Identity();
-  Eigen::Vector3d track_direction_ = Eigen::Vector3d::UnitX();  // ship heading, horizontal unit
-  double last_odom_wall_ = 0.0;                                 // [s] wall time of the last accepted odometry
+  double last_odom_wall_ = 0.0;  // [s] wall time of the last accepted odometry
 
   // Diagnostics.
   double realtime_factor_ = 0.0;

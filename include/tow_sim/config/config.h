@@ -1,4 +1,4 @@
-// Loading the simulator's configuration (cable, vehicle, environment, numerics) from YAML, as written
+// Loading the simulator's configuration (cable, vehicle, environment, numerics, winch, seabed) from YAML, as written
 // in config/tow_sim.yaml. The same loader serves the offline tools (a file) and the ROS node (its
 // private parameters, converted to YAML), so every key is read, defaulted and checked in one place.
 #pragma once
@@ -6,22 +6,10 @@
 #include <yaml-cpp/yaml.h>
 #include <string>
 
-#include "tow_sim/core/params.h"
-#include "tow_sim/core/seabed.h"
-#include "tow_sim/core/vehicle.h"
+#include "tow_sim/core/simulation_config.h"
 
 namespace tow_sim
 {
-struct SimulationConfig
-{
-  CableParams cable;
-  VehicleParams vehicle;
-  Environment environment;
-  NumericsParams numerics;
-  WinchParams winch;
-  SeabedParams seabed;  // its grid already read from seabed.grid_file
-};
-
 // Reads the sections `cable`, `vehicle`, `environment`, `numerics`, `winch` and `seabed` of `root`
 // (others are ignored; a relative seabed.grid_file is taken from `base_dir` when given;
 // every section and key is optional and defaults to the documented value). Throws
@@ -35,5 +23,9 @@ std::string directoryOf(const std::string& path);
 
 // Writes a configuration back as YAML (every key, defaults filled in).
 YAML::Node toYaml(const SimulationConfig& config);
+
+// Reads a bathymetry grid file: YAML {origin: [x, y], spacing: [dx, dy], depth: [[row at y0], [row at y0+dy],
+// ...]}. Throws std::invalid_argument naming the file and the key.
+BathymetryGrid loadBathymetryFile(const std::string& path);
 
 }  // namespace tow_sim

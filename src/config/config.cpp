@@ -1,6 +1,6 @@
-#include "tow_sim/core/config.h"
+#include "tow_sim/config/config.h"
 
-#include "yaml_section.h"
+#include "tow_sim/config/yaml_section.h"
 
 #include <cmath>
 #include <filesystem>

@@ -1,10 +1,10 @@
-#include "tow_sim/core/scenario.h"
+#include "tow_sim/scenario/scenario.h"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
-#include "yaml_section.h"
+#include "tow_sim/config/yaml_section.h"
 
 namespace tow_sim
 {
@@ -201,26 +201,26 @@ Scenario loadScenarioUnguarded(const YAML::Node& root, const std::string& base_d
     Section init = top.child("initial_state");
     const std::string type = init.text("type", "equilibrium");
     if (type == "equilibrium")
-      sc.start = Scenario::Start::kEquilibrium;
+      sc.initial.type = InitialShape::Type::kEquilibrium;
     else if (type == "line")
-      sc.start = Scenario::Start::kLine;
+      sc.initial.type = InitialShape::Type::kLine;
     else if (type == "points")
-      sc.start = Scenario::Start::kPoints;
+      sc.initial.type = InitialShape::Type::kPoints;
     else
       fail(init.path("type"), "= '" + type + "' must be equilibrium, line or points");
-    init.read("direction", sc.line_direction_S);
+    init.read("direction", sc.initial.line_direction_S);
     const std::vector<double> p = init.list("points");
     init.finish();
-    if (sc.line_direction_S.norm() < 1e-9 || !sc.line_direction_S.allFinite())
+    if (sc.initial.line_direction_S.norm() < 1e-9 || !sc.initial.line_direction_S.allFinite())
       fail(init.path("direction"), "must be a finite, non-zero [x, y, z] in the ship frame");
     const size_t joints = static_cast<size_t>(sc.config.cable.segments) + 1;
-    if (sc.start == Scenario::Start::kPoints)
+    if (sc.initial.type == InitialShape::Type::kPoints)
     {
       if (p.size() != 3 * joints)
         fail(init.path("points"), "must hold 3 (nu + 1) = " + std::to_string(3 * joints) +
                                       " numbers (joints x_2 .. x_{nu+2}, world, x y z each); got " +
                                       std::to_string(p.size()));
-      sc.points = Eigen::Map<const Eigen::Matrix3Xd>(p.data(), 3, static_cast<Eigen::Index>(joints));
+      sc.initial.points = Eigen::Map<const Eigen::Matrix3Xd>(p.data(), 3, static_cast<Eigen::Index>(joints));
     }
   }
 
@@ -317,125 +317,18 @@ YAML::Node toYaml(const Scenario& sc)
     }
   }
   YAML::Node init = root["initial_state"];
-  init["type"] = sc.start == Scenario::Start::kEquilibrium ? "equilibrium"
-                 : sc.start == Scenario::Start::kLine      ? "line"
-                                                           : "points";
-  init["direction"] = std::vector<double>{ sc.line_direction_S.x(), sc.line_direction_S.y(), sc.line_direction_S.z() };
-  if (sc.start == Scenario::Start::kPoints)
-    init["points"] = std::vector<double>(sc.points.data(), sc.points.data() + sc.points.size());
+  const InitialShape& initial = sc.initial;
+  init["type"] = initial.type == InitialShape::Type::kEquilibrium ? "equilibrium"
+                 : initial.type == InitialShape::Type::kLine      ? "line"
+                                                                  : "points";
+  const Eigen::Vector3d& d = initial.line_direction_S;
+  init["direction"] = std::vector<double>{ d.x(), d.y(), d.z() };
+  if (initial.type == InitialShape::Type::kPoints)
+    init["points"] = std::vector<double>(initial.points.data(), initial.points.data() + initial.points.size());
   root["simulation"]["duration"] = sc.duration;
   root["simulation"]["output_interval"] = sc.output_interval;
   root["simulation"]["shape_interval"] = sc.shape_interval;
   return root;
-}
-
-Eigen::Vector3d ShipPath::poseAt(double time) const
-{
-  if (t.empty())
-    return Eigen::Vector3d::Zero();
-  const auto upper = std::upper_bound(t.begin(), t.end(), time);
-  if (upper == t.begin())
-    return pose.front();
-  if (upper == t.end())
-    return pose.back();
-  const size_t i = static_cast<size_t>(upper - t.begin());
-  const double w = (time - t[i - 1]) / (t[i] - t[i - 1]);
-  return (1.0 - w) * pose[i - 1] + w * pose[i];
-}
-
-double ShipPath::speedAt(double time) const
-{
-  if (t.empty())
-    return 0.0;
-  const auto upper = std::upper_bound(t.begin(), t.end(), time);
-  const size_t i = std::min(static_cast<size_t>(upper - t.begin()), t.size() - 1);
-  return speed[i];
-}
-
-ShipPath buildShipPath(const Scenario& sc, double dt)
-{
-  const size_t samples = static_cast<size_t>(sc.duration / dt) + 40;
-  ShipPath path{ ShipTrack(1.0, samples + 10), {}, {}, {} };
-  double x = sc.start_position.x(), y = sc.start_position.y(), heading = sc.start_heading;
-  double u = sc.manoeuvres.front().speed, r = 0.0, time = 0.0;
-  size_t index = 0;           // current manoeuvre
-  double started = 0.0;       // when it started
-  double heading0 = heading;  // heading when it started
-  double speed0 = u;          // speed when it started
-  int leg = 0;                // zigzag leg / waypoint index
-  auto advanceManoeuvre = [&]()
-  {
-    ++index;
-    started = time;
-    heading0 = heading;
-    speed0 = u;
-    leg = 0;
-  };
-  for (size_t k = 0; k < samples; ++k)
-  {
-    double u_target = u, r_target = 0.0;
-    if (index < sc.manoeuvres.size())
-    {
-      const Manoeuvre& m = sc.manoeuvres[index];
-      const double elapsed = time - started;
-      const double turn_rate = std::abs(m.speed) / m.radius;
-      switch (m.type)
-      {
-        case Manoeuvre::Type::kStraight:
-          u_target = m.speed;
-          if (elapsed >= m.duration)
-            advanceManoeuvre();
-          break;
-        case Manoeuvre::Type::kSpeedChange:
-          u_target = speed0 + (m.to_speed - speed0) * std::min(1.0, elapsed / m.duration);
-          if (elapsed >= m.duration)
-            advanceManoeuvre();
-          break;
-        case Manoeuvre::Type::kTurn:
-          u_target = m.speed;
-          r_target = m.direction * turn_rate;
-          if (std::abs(heading - heading0) >= m.angle)
-            advanceManoeuvre();
-          break;
-        case Manoeuvre::Type::kZigzag:
-        {
-          u_target = m.speed;
-          const double side = (leg % 2 == 0 ? 1.0 : -1.0) * m.direction;
-          r_target = side * turn_rate;
-          if (side * (heading - heading0) >= m.angle && ++leg >= m.legs)
-            advanceManoeuvre();
-          break;
-        }
-        case Manoeuvre::Type::kWaypoints:
-        {
-          u_target = m.speed;
-          const Eigen::Vector2d& w = m.points[static_cast<size_t>(leg)];
-          const double wanted = std::atan2(w.y() - y, w.x() - x);
-          const double error = std::atan2(std::sin(wanted - heading), std::cos(wanted - heading));
-          r_target = std::clamp(error / 20.0, -turn_rate, turn_rate);
-          if (std::hypot(w.x() - x, w.y() - y) < m.acceptance && ++leg >= static_cast<int>(m.points.size()))
-            advanceManoeuvre();
-          break;
-        }
-      }
-    }
-    // Store this sample, then integrate to the next one.
-    const Eigen::Matrix3d R = Eigen::AngleAxisd(heading, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-    const Eigen::Vector3d v_ship = R * Eigen::Vector3d(u, 0.0, 0.0);
-    const Eigen::Vector3d w_ship(0.0, 0.0, r);
-    path.tow_point.add(time, Eigen::Vector3d(x, y, 0.0) + R * sc.tow_point_S,
-                       v_ship + w_ship.cross(R * sc.tow_point_S));
-    path.t.push_back(time);
-    path.pose.emplace_back(x, y, heading);
-    path.speed.push_back(u);
-    u += std::clamp(u_target - u, -0.1 * dt, 0.1 * dt);
-    r += (r_target - r) * std::min(1.0, dt / 2.0);
-    heading += r * dt;
-    x += u * std::cos(heading) * dt;
-    y += u * std::sin(heading) * dt;
-    time += dt;
-  }
-  return path;
 }
 
 }  // namespace tow_sim

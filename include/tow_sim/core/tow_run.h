@@ -1,0 +1,137 @@
+// One towing run, whatever drives it: the model, the simulator (with the chain's data), the ship as it
+// moves, a schedule of commands, the depth autopilot in the loop if there is one, and the one policy for
+// the initial shape. It produces a TowSnapshot holding every derived output. tow_sim_node, tow_sim_batch
+// and tow_sim_demo are adapters around it: they feed it ship samples and commands and convert snapshots
+// into messages, CSV rows or table lines; none of them builds a model or derives an output itself.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tow_sim/core/depth_autopilot.h"
+#include "tow_sim/core/ship_track.h"
+#include "tow_sim/core/simulation_config.h"
+#include "tow_sim/core/simulator.h"
+
+namespace tow_sim
+{
+// Fins, thrust and winch from a time on (a schedule entry).
+struct CommandEvent
+{
+  double t = 0.0;            // [s]
+  double rudder = 0.0;       // [rad]
+  double elevator = 0.0;     // [rad]
+  double thrust = 0.0;       // [N]
+  double payout_rate = 0.0;  // [m/s] winch, positive pays out (needs winch.enabled)
+};
+
+// How the cable is laid out when a run starts (and restarts after a divergence). One fallback: when no
+// steady-tow equilibrium is found, a straight line along line_direction_S.
+struct InitialShape
+{
+  enum class Type
+  {
+    kEquilibrium,  // the steady tow at the ship's velocity then (default)
+    kLine,         // straight from the tow point along line_direction_S
+    kHanging,      // straight down
+    kPoints        // the given joints (world)
+  };
+  Type type = Type::kEquilibrium;
+  Eigen::Vector3d line_direction_S = Eigen::Vector3d(-1.0, 0.0, -0.5);  // ship frame (FLU), turned by the heading
+  Eigen::Matrix3Xd points;                                              // joints x_2 .. x_{nu+2}, for kPoints
+};
+
+// Every output of the run at one instant (SI units, world ENU frame unless stated).
+struct TowSnapshot
+{
+  double t = 0.0;             // [s]
+  ShipPose ship;              // the ship's reference point, heading and speed
+  ShipEndState tow_point;     // x_1
+  int segments = 0;           // nu (the winch changes it)
+  Eigen::Matrix3Xd joints;    // [m] x_1 .. x_{nu+2}, tow point first
+  Eigen::Matrix3Xd tensions;  // [N] T_1 .. T_{nu+1}, the pull toward the ship on each element's forward joint
+  std::vector<bool> slack;    // per T_lambda: the rigid link carries compression
+  double tension_ship = 0.0, tension_vehicle = 0.0;  // [N] |T_1|, |T_{nu+1}|
+  double cable_length = 0.0, payout_rate = 0.0;      // [m], [m/s]
+  double max_length_error = 0.0;  // [-] largest relative length error a step left before projection, since
+                                  // the previous snapshot
+  VehicleOutputs vehicle;         // at the CG, in the dynamics' zero-roll frame; fin angles and loads
+  Eigen::Quaterniond attitude = Eigen::Quaterniond::Identity();  // as published (AttitudeHold near the vertical)
+  double pitch = 0.0, yaw = 0.0;  // [rad] REP-103 of `attitude`: pitch positive nose down, yaw from +x
+  double depth = 0.0;             // [m] of the CG
+  double layback = 0.0;           // [m] of the CG behind the tow point, along the ship's heading
+  Diversion diversion;            // of the CG from the ship's track, positive to port, and its rate
+  bool seabed_present = false;
+  double vehicle_altitude = 0.0;         // [m] CG above the seabed (NaN without one)
+  std::vector<bool> joint_contact;       // per joint x_1 .. x_{nu+2}: below the bottom (x_1 never)
+  int contacts = 0;                      // joints below the bottom
+  bool vehicle_on_seabed = false;        // a hull end below the bottom
+  std::optional<double> depth_setpoint;  // [m] the autopilot's (the equivalent depth in altitude mode)
+};
+
+class TowRun
+{
+public:
+  // Validates the configuration (std::invalid_argument naming the key). The ship history is shared with
+  // the caller, who adds samples as they come (the node) or all in advance (the batch).
+  TowRun(const SimulationConfig& config, std::shared_ptr<ShipHistory> ship,
+         const InitialShape& initial = InitialShape());
+
+  // Lays the cable out at time t at the ship's pose then, by the initial-shape policy: fins centred and the
+  // scheduled commands due by t applied, the winch from rest. Returns a warning when it had to fall back
+  // (no equilibrium: a straight line), else "".
+  std::string start(double t);
+  bool started() const { return started_; }
+
+  // Commands due later, applied in time order as the run passes them (sorted here).
+  void schedule(std::vector<CommandEvent> commands);
+  // The depth autopilot in the loop: it commands the fins at its rate from vehicle outputs and the ship's
+  // track, with its setpoints at their times. Validates its parameters.
+  void setAutopilot(const AutopilotLoop& loop);
+
+  // Immediate commands from now on (as Simulator's).
+  bool command(double rudder, double elevator, double thrust) { return sim_.command(rudder, elevator, thrust); }
+  double setWinchCommand(double payout_rate) { return sim_.setWinchCommand(payout_rate); }
+  void setCurrent(const Eigen::Vector3d& current_W) { sim_.setCurrent(current_W); }
+  void setCurrentProfile(const std::vector<CurrentSample>& profile) { sim_.setCurrentProfile(profile); }
+
+  // Integrates to t (>= time()), applying the scheduled commands, setpoints and autopilot ticks due on the
+  // way in time order. Throws std::runtime_error on divergence (the last good state stays).
+  StepReport advanceTo(double t);
+  // Every output now; the length-error maximum starts again.
+  TowSnapshot snapshot();
+
+  double time() const { return sim_.time(); }
+  const Simulator& simulator() const { return sim_; }
+  const ChainModel& model() const { return *model_; }
+  const Vehicle& vehicle() const { return *vehicle_; }
+  const SimulationConfig& config() const { return config_; }
+  const Seabed* seabed() const { return model_->seabed(); }
+
+private:
+  ChainState initialState(double t, std::string* warning) const;
+  void autopilotTick(double t);
+  VehicleOutputs vehicleOutputs() const;
+
+  SimulationConfig config_;
+  std::shared_ptr<const Vehicle> vehicle_;
+  std::shared_ptr<const ChainModel> model_;
+  std::shared_ptr<ShipHistory> ship_;
+  InitialShape initial_;
+  Simulator sim_;
+  bool started_ = false;
+  std::vector<CommandEvent> commands_;
+  size_t next_command_ = 0;
+  AutopilotLoop autopilot_loop_;
+  std::unique_ptr<DepthAutopilot> autopilot_;
+  size_t next_setpoint_ = 0;
+  long ticks_ = 0;
+  double max_length_error_ = 0.0;
+  AttitudeHold attitude_;
+};
+
+}  // namespace tow_sim

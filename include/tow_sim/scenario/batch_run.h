@@ -1,0 +1,36 @@
+// The batch run of a scenario (tow_sim_batch): a TowRun on the scenario's scripted ship, commands and
+// autopilot, sampled every output interval into the rows of timeseries.csv and shapes.csv. The tool only
+// parses its arguments and opens the files; tests call this in-process. (Library tow_sim_scenario.)
+#pragma once
+
+#include <functional>
+#include <ostream>
+#include <string>
+
+#include "tow_sim/core/tow_run.h"
+#include "tow_sim/scenario/scenario.h"
+
+namespace tow_sim
+{
+// The columns of timeseries.csv and of shapes.csv (README, "Batch runs").
+const char* timeseriesHeader();
+const char* shapesHeader();
+// One row of timeseries.csv for a snapshot (no line break); blank cells as documented.
+std::string timeseriesRow(const TowSnapshot& s);
+// The rows of shapes.csv for a snapshot: one per joint x_1 .. x_{nu+2}, each ending in a line break.
+std::string shapesRows(const TowSnapshot& s);
+
+struct BatchResult
+{
+  double t_reached = 0.0;     // [s] the last output time written
+  long rows = 0;              // timeseries rows written
+  std::string start_warning;  // the initial shape's fallback, if it had to fall back
+};
+
+// Runs the scenario, writing the headers and a row per output interval (shapes every shape interval and at
+// the end). Throws std::runtime_error when the run diverges; `result` then says how far the rows go.
+// `progress` (may be empty) is called with each output time.
+void runScenario(const Scenario& scenario, std::ostream& series, std::ostream& shapes, BatchResult& result,
+                 const std::function<void(double t)>& progress = {});
+
+}  // namespace tow_sim

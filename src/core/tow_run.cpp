@@ -1,0 +1,237 @@
+#include "tow_sim/core/tow_run.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "tow_sim/core/equilibrium.h"
+
+namespace tow_sim
+{
+namespace
+{
+std::shared_ptr<const Seabed> makeSeabed(const SeabedParams& params)
+{
+  return params.type == SeabedParams::Type::kNone ? nullptr : std::make_shared<Seabed>(params);
+}
+}  // namespace
+
+TowRun::TowRun(const SimulationConfig& config, std::shared_ptr<ShipHistory> ship, const InitialShape& initial)
+    : config_(config),
+      vehicle_(std::make_shared<Vehicle>(config.vehicle, config.numerics)),
+      model_(std::make_shared<ChainModel>(config.cable, vehicle_, config.environment, config.numerics,
+                                          makeSeabed(config.seabed))),
+      ship_(std::move(ship)),
+      initial_(initial),
+      sim_(
+          model_, [ship = ship_.get()](double t) { return ship->towPoint(t); }, config.winch)
+{
+  if (!ship_)
+    throw std::invalid_argument("TowRun: no ship history given");
+}
+
+void TowRun::schedule(std::vector<CommandEvent> commands)
+{
+  std::stable_sort(commands.begin(), commands.end(),
+                   [](const CommandEvent& a, const CommandEvent& b) { return a.t < b.t; });
+  for (const CommandEvent& c : commands)
+    if (c.payout_rate != 0.0 && !config_.winch.enabled)
+      throw std::invalid_argument("commands: payout_rate needs the winch (winch.enabled is false)");
+  commands_ = std::move(commands);
+  next_command_ = 0;
+}
+
+void TowRun::setAutopilot(const AutopilotLoop& loop)
+{
+  loop.params.validate("autopilot.");
+  requireInRange("autopilot.rate", loop.rate, 0.1, 1000.0, "[Hz]");
+  autopilot_loop_ = loop;
+  std::stable_sort(autopilot_loop_.setpoints.begin(), autopilot_loop_.setpoints.end(),
+                   [](const AutopilotSetpoint& a, const AutopilotSetpoint& b) { return a.t < b.t; });
+  autopilot_ = loop.enabled ? std::make_unique<DepthAutopilot>(loop.params) : nullptr;
+  next_setpoint_ = 0;
+  ticks_ = 0;
+}
+
+ChainState TowRun::initialState(double t, std::string* warning) const
+{
+  const ShipEndState tow = ship_->towPoint(t);
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(ship_->pose(t).heading, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const ChainGeometry& geometry = sim_.geometry();
+  ChainState state;
+  switch (initial_.type)
+  {
+    case InitialShape::Type::kEquilibrium:
+      try
+      {
+        state = steadyTowEquilibrium(*model_, sim_.data(), t, tow.p_W, tow.v_W).state;
+        break;
+      }
+      catch (const std::runtime_error& e)
+      {
+        *warning = std::string(e.what()) + "; starting from a straight line instead";
+      }
+      state = straightChain(geometry, tow.p_W, R * initial_.line_direction_S, tow.v_W);
+      break;
+    case InitialShape::Type::kLine:
+      state = straightChain(geometry, tow.p_W, R * initial_.line_direction_S, tow.v_W);
+      break;
+    case InitialShape::Type::kHanging:
+      state = straightChain(geometry, tow.p_W, -Eigen::Vector3d::UnitZ(), tow.v_W);
+      break;
+    case InitialShape::Type::kPoints:
+      state.x = initial_.points;
+      state.v = initial_.points;
+      state.v.colwise() = tow.v_W;
+      break;
+  }
+  // The initial shapes know nothing of the seabed: joints below it are raised onto it.
+  if (model_->seabed())
+    liftAboveSeabed(*model_->seabed(), state);
+  return state;
+}
+
+std::string TowRun::start(double t)
+{
+  if (ship_->empty())
+    throw std::invalid_argument("TowRun::start: no ship sample yet");
+  sim_.resetActuators(t);
+  // Fins and thrust due by t act from the start (the thrust shapes the equilibrium); the winch starts from
+  // rest with the reset and takes its command after it.
+  size_t due = next_command_;
+  for (; due < commands_.size() && commands_[due].t <= t; ++due)
+    if (!autopilot_)
+      sim_.command(commands_[due].rudder, commands_[due].elevator, commands_[due].thrust);
+  std::string warning;
+  const ChainState state = initialState(t, &warning);
+  sim_.reset(t, state);
+  for (; next_command_ < due; ++next_command_)
+    if (config_.winch.enabled)
+      sim_.setWinchCommand(commands_[next_command_].payout_rate);
+  attitude_.reset();
+  max_length_error_ = 0.0;
+  started_ = true;
+  return warning;
+}
+
+VehicleOutputs TowRun::vehicleOutputs() const
+{
+  return vehicle_->outputs(sim_.time(), sim_.elementKinematics(sim_.geometry().segments), sim_.data().environment,
+                           sim_.data().actuators);
+}
+
+void TowRun::autopilotTick(double t)
+{
+  ++ticks_;
+  const VehicleOutputs o = vehicleOutputs();
+  VehicleMeasurement m;
+  m.t = t;
+  m.p_W = o.p_cg_W;
+  m.v_W = o.v_cg_W;
+  if (model_->seabed())
+    m.altitude = model_->seabed()->altitude(o.p_cg_W);
+  autopilot_->addVehicle(m);
+  const ShipPose pose = ship_->pose(t);
+  autopilot_->addShip(Eigen::Vector2d(pose.x, pose.y));
+  const AutopilotCommand c = autopilot_->update(t);
+  sim_.command(c.rudder, c.elevator, c.thrust);
+}
+
+StepReport TowRun::advanceTo(double t)
+{
+  if (!started_)
+    throw std::logic_error("TowRun::advanceTo before start()");
+  // Everything due up to t in time order (at equal times: commands, then setpoints, then autopilot ticks),
+  // each after the simulation has reached its time; then the simulation to t.
+  const double never = std::numeric_limits<double>::infinity();
+  StepReport total;
+  auto integrate = [&](double to)
+  {
+    const StepReport r = sim_.advanceTo(to);
+    total.steps += r.steps;
+    total.rejected += r.rejected;
+    total.max_length_error = std::max(total.max_length_error, r.max_length_error);
+    max_length_error_ = std::max(max_length_error_, r.max_length_error);
+  };
+  for (;;)
+  {
+    const double t_command = next_command_ < commands_.size() ? commands_[next_command_].t : never;
+    const std::vector<AutopilotSetpoint>& setpoints = autopilot_loop_.setpoints;
+    const double t_setpoint = autopilot_ && next_setpoint_ < setpoints.size() ? setpoints[next_setpoint_].t : never;
+    const double t_tick = autopilot_ ? ticks_ / autopilot_loop_.rate : never;
+    const double t_next = std::min({ t_command, t_setpoint, t_tick });
+    if (t_next > t)
+      break;
+    integrate(t_next);
+    if (t_next == t_command)
+    {
+      const CommandEvent& c = commands_[next_command_++];
+      if (!autopilot_)
+        sim_.command(c.rudder, c.elevator, c.thrust);
+      if (config_.winch.enabled)
+        sim_.setWinchCommand(c.payout_rate);
+    }
+    else if (t_next == t_setpoint)
+    {
+      const AutopilotSetpoint& sp = setpoints[next_setpoint_++];
+      if (sp.altitude)
+        autopilot_->setAltitudeSetpoint(sp.value);
+      else
+        autopilot_->setSetpoint(sp.value);
+    }
+    else
+      autopilotTick(t_next);
+  }
+  integrate(t);
+  return total;
+}
+
+TowSnapshot TowRun::snapshot()
+{
+  TowSnapshot s;
+  s.t = sim_.time();
+  s.ship = ship_->pose(s.t);
+  s.tow_point = sim_.shipEnd();
+  s.segments = sim_.geometry().segments;
+  s.joints = sim_.jointPositions();
+  s.tensions = sim_.tensions();
+  if (!s.joints.allFinite() || !s.tensions.allFinite())
+    throw std::runtime_error("non-finite state at t = " + std::to_string(s.t) + " s");
+  s.slack = slackFlags(s.joints, s.tensions);
+  s.tension_ship = s.tensions.col(0).norm();
+  s.tension_vehicle = s.tensions.col(s.segments).norm();
+  s.cable_length = sim_.cableLength();
+  s.payout_rate = sim_.payoutRate();
+  s.max_length_error = max_length_error_;
+  max_length_error_ = 0.0;
+
+  const VehicleOutputs& o = s.vehicle = vehicleOutputs();
+  s.attitude = attitude_.update(o.q_WB * Eigen::Vector3d::UnitX());
+  const Eigen::Vector3d x_b = s.attitude * Eigen::Vector3d::UnitX(), y_b = s.attitude * Eigen::Vector3d::UnitY();
+  s.pitch = -std::asin(std::clamp(x_b.z(), -1.0, 1.0));
+  s.yaw = std::atan2(-y_b.x(), y_b.y());
+  s.depth = o.depth;
+  const Eigen::Vector3d heading(std::cos(s.ship.heading), std::sin(s.ship.heading), 0.0);
+  s.layback = (s.tow_point.p_W - o.p_cg_W).dot(heading);
+  s.diversion = lateralDiversion(o.p_cg_W, o.v_cg_W, s.tow_point, heading);
+
+  const Seabed* bottom = model_->seabed();
+  s.seabed_present = bottom != nullptr;
+  s.vehicle_altitude = bottom ? bottom->altitude(o.p_cg_W) : std::numeric_limits<double>::quiet_NaN();
+  s.joint_contact.assign(static_cast<size_t>(s.joints.cols()), false);
+  if (bottom)
+  {
+    for (Eigen::Index j = 1; j < s.joints.cols(); ++j)
+      s.joint_contact[static_cast<size_t>(j)] = bottom->altitude(s.joints.col(j)) < 0.0;
+    s.contacts = static_cast<int>(std::count(s.joint_contact.begin(), s.joint_contact.end(), true));
+    const ElementKinematics k = sim_.elementKinematics(s.segments);
+    for (double eta : vehicle_->contactFractions())
+      s.vehicle_on_seabed = s.vehicle_on_seabed || bottom->altitude(k.pointAt(eta)) < 0.0;
+  }
+  if (autopilot_ && autopilot_->hasSetpoint())
+    s.depth_setpoint = autopilot_->setpoint();
+  return s;
+}
+
+}  // namespace tow_sim
