@@ -11,7 +11,7 @@ trap 'rm -rf "$tmp"' EXIT
 for scenario in "$repo"/scenarios/*.yaml; do
   name="$(basename "$scenario" .yaml)"
   [[ "$name" == bathymetry_* ]] && continue  # grids, not scenarios
-  "$batch" --scenario "$scenario" --out "$tmp/$name" > /dev/null
+  "$batch" --scenario "$scenario" --out "$tmp/$name" > /dev/null 2> "$tmp/$name.log" || { cat "$tmp/$name.log"; exit 1; }
   mkdir -p "$repo/test/golden/$name"
   cp "$tmp/$name/timeseries.csv" "$tmp/$name/shapes.csv" "$repo/test/golden/$name/"
   echo "recorded $name"

@@ -1,9 +1,9 @@
 // ship_motion_node: a scripted ship for demos and tests. Publishes nav_msgs/Odometry on ship/odom and the
 // tf world -> ship; follows geometry_msgs/Twist on cmd_vel (surge speed, yaw rate) while it keeps coming.
-// Manoeuvres (~manoeuvre): straight, turn (after ~turn_start, radius ~turn_radius, to port if
-// ~turn_radius > 0), zigzag (yaw rate +-speed/radius switching every ~zigzag_period / 2), speed_change (to
-// ~speed_2 at ~change_time over ~change_duration). Yaw rate follows its target with a 5 s lag and speed
-// ramps, so the ship's acceleration is continuous.
+// The ship moves by the scenarios' manoeuvre law (ScriptedShip, tow_sim_scenario); ~manoeuvre picks a
+// preset: straight, turn (after ~turn_start, radius ~turn_radius, to port if ~turn_radius > 0), zigzag
+// (+-~speed/~turn_radius * ~zigzag_period/4 about the course, from ~turn_start), speed_change (to ~speed_2 at
+// ~change_time over ~change_duration), waypoints (~waypoints, each within ~waypoint_radius).
 #include <geometry_msgs/TransformStamped.h>
 #include <geometry_msgs/Twist.h>
 #include <nav_msgs/Odometry.h>
@@ -12,56 +12,122 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
-#include <utility>
 #include <vector>
+
+#include "tow_sim/scenario/scripted_ship.h"
 
 namespace
 {
-class ShipMotion
+using tow_sim::Manoeuvre;
+
+struct Presets
+{
+  std::string manoeuvre = "straight";
+  double speed = 2.0, speed_2 = 1.0, change_time = 120.0, change_duration = 30.0;
+  double turn_radius = 200.0, turn_start = 120.0, zigzag_period = 240.0, waypoint_radius = 30.0;
+  std::vector<Eigen::Vector2d> waypoints;
+};
+
+Presets readPresets(const ros::NodeHandle& pnh)
+{
+  Presets p;
+  pnh.param<std::string>("manoeuvre", p.manoeuvre, p.manoeuvre);
+  pnh.param("speed", p.speed, p.speed);
+  pnh.param("speed_2", p.speed_2, p.speed_2);
+  pnh.param("change_time", p.change_time, p.change_time);
+  pnh.param("change_duration", p.change_duration, p.change_duration);
+  pnh.param("turn_radius", p.turn_radius, p.turn_radius);
+  pnh.param("turn_start", p.turn_start, p.turn_start);
+  pnh.param("zigzag_period", p.zigzag_period, p.zigzag_period);
+  pnh.param("waypoint_radius", p.waypoint_radius, p.waypoint_radius);
+  std::vector<double> points;
+  pnh.param("waypoints", points, points);
+  if (points.size() % 2 != 0)
+    throw std::invalid_argument(pnh.resolveName("waypoints") + " must hold x, y pairs [m]: an even count of numbers");
+  for (size_t i = 0; i + 1 < points.size(); i += 2)
+    p.waypoints.emplace_back(points[i], points[i + 1]);
+  const std::string known[] = { "straight", "turn", "zigzag", "speed_change", "waypoints" };
+  if (std::find(std::begin(known), std::end(known), p.manoeuvre) == std::end(known))
+    throw std::invalid_argument(pnh.resolveName("manoeuvre") + " = '" + p.manoeuvre +
+                                "' must be straight, turn, zigzag, speed_change or waypoints");
+  if (p.manoeuvre == "waypoints" && p.waypoints.empty())
+    throw std::invalid_argument(pnh.resolveName("waypoints") +
+                                " is empty: the waypoints manoeuvre needs at least one [x, y] pair");
+  if (!(std::abs(p.speed) <= 15.0 && std::abs(p.speed_2) <= 15.0))
+    throw std::invalid_argument(pnh.resolveName("speed") + " and speed_2 must be in [-15, 15] [m/s]");
+  if (!(std::abs(p.turn_radius) >= 10.0 && std::abs(p.turn_radius) <= 1e5))
+    throw std::invalid_argument(pnh.resolveName("turn_radius") + " must have a magnitude in [10, 1e5] [m]");
+  if (!(p.zigzag_period > 0.0) || !(p.change_duration > 0.0) || !(p.turn_start >= 0.0) || !(p.change_time >= 0.0))
+    throw std::invalid_argument(pnh.resolveName("zigzag_period") +
+                                " and change_duration must be > 0 [s], turn_start "
+                                "and change_time >= 0 [s]");
+  return p;
+}
+
+// A preset as a list of manoeuvres, straight on for ever (1e6 s) after it.
+std::vector<Manoeuvre> manoeuvres(const Presets& p)
+{
+  auto make = [&](Manoeuvre::Type type, double duration)
+  {
+    Manoeuvre m;
+    m.type = type;
+    m.speed = p.speed;
+    m.duration = duration;
+    m.radius = std::abs(p.turn_radius);
+    m.direction = p.turn_radius > 0.0 ? 1 : -1;
+    return m;
+  };
+  std::vector<Manoeuvre> list;
+  const bool delayed = p.manoeuvre == "turn" || p.manoeuvre == "zigzag";
+  if (delayed && p.turn_start > 0.0)
+    list.push_back(make(Manoeuvre::Type::kStraight, p.turn_start));
+  if (p.manoeuvre == "turn")
+  {
+    list.push_back(make(Manoeuvre::Type::kTurn, 0.0));
+    list.back().angle = 100.0;  // [rad] about 16 turns
+  }
+  else if (p.manoeuvre == "zigzag")
+  {
+    list.push_back(make(Manoeuvre::Type::kZigzag, 0.0));
+    list.back().angle = std::abs(p.speed) / std::abs(p.turn_radius) * p.zigzag_period / 4.0;
+    list.back().legs = 1000;
+  }
+  else if (p.manoeuvre == "speed_change")
+  {
+    list.push_back(make(Manoeuvre::Type::kStraight, std::max(p.change_time, 1e-3)));
+    list.push_back(make(Manoeuvre::Type::kSpeedChange, p.change_duration));
+    list.back().to_speed = p.speed_2;
+  }
+  else if (p.manoeuvre == "waypoints")
+  {
+    list.push_back(make(Manoeuvre::Type::kWaypoints, 0.0));
+    list.back().acceptance = p.waypoint_radius;
+    list.back().points = p.waypoints;
+  }
+  list.push_back(make(Manoeuvre::Type::kStraight, 1e6));
+  if (p.manoeuvre == "speed_change")
+    list.back().speed = p.speed_2;
+  return list;
+}
+
+class ShipMotionNode
 {
 public:
-  explicit ShipMotion(ros::NodeHandle& nh, ros::NodeHandle& pnh)
+  ShipMotionNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : presets_(readPresets(pnh))
   {
-    pnh.param<std::string>("manoeuvre", manoeuvre_, "straight");
-    pnh.param("speed", speed_, 2.0);
-    pnh.param("speed_2", speed_2_, 1.0);
-    pnh.param("change_time", change_time_, 120.0);
-    pnh.param("change_duration", change_duration_, 30.0);
-    pnh.param("turn_radius", turn_radius_, 200.0);
-    pnh.param("turn_start", turn_start_, 120.0);
-    pnh.param("zigzag_period", zigzag_period_, 240.0);
+    double heading = 0.0;
+    pnh.param("heading", heading, heading);
     pnh.param("rate", rate_, 20.0);
     pnh.param<std::string>("world_frame", world_frame_, "odom");
     pnh.param<std::string>("ship_frame", ship_frame_, "ship");
-    pnh.param("heading", heading_, 0.0);
-    pnh.param("waypoint_radius", waypoint_radius_, 30.0);
-    std::vector<double> waypoints;
-    pnh.param("waypoints", waypoints, waypoints);
-    if (waypoints.size() % 2 != 0)
-      throw std::invalid_argument(pnh.resolveName("waypoints") + " must hold x, y pairs [m]: an even count of numbers");
-    for (size_t i = 0; i + 1 < waypoints.size(); i += 2)
-      waypoints_.emplace_back(waypoints[i], waypoints[i + 1]);
-    const std::string known[] = { "straight", "turn", "zigzag", "speed_change", "waypoints" };
-    if (std::find(std::begin(known), std::end(known), manoeuvre_) == std::end(known))
-      throw std::invalid_argument(pnh.resolveName("manoeuvre") + " = '" + manoeuvre_ +
-                                  "' must be straight, turn, zigzag, speed_change or waypoints");
-    if (manoeuvre_ == "waypoints" && waypoints_.empty())
-      throw std::invalid_argument(pnh.resolveName("waypoints") +
-                                  " is empty: the waypoints manoeuvre needs at least "
-                                  "one [x, y] pair");
-    if (!(std::abs(speed_) <= 15.0 && std::abs(speed_2_) <= 15.0))
-      throw std::invalid_argument(pnh.resolveName("speed") + " and speed_2 must be in [-15, 15] [m/s]");
-    if (!(std::abs(turn_radius_) >= 10.0 && std::abs(turn_radius_) <= 1e5))
-      throw std::invalid_argument(pnh.resolveName("turn_radius") + " must have a magnitude in [10, 1e5] [m]");
-    if (!(rate_ >= 1.0 && rate_ <= 1000.0) || !(zigzag_period_ > 0.0) || !(change_duration_ > 0.0))
-      throw std::invalid_argument(pnh.resolveName("rate") +
-                                  " must be in [1, 1000] [Hz]; zigzag_period and "
-                                  "change_duration > 0 [s]");
-    u_ = speed_;
+    if (!(rate_ >= 1.0 && rate_ <= 1000.0))
+      throw std::invalid_argument(pnh.resolveName("rate") + " must be in [1, 1000] [Hz]");
+    ship_ = std::make_unique<tow_sim::ScriptedShip>(manoeuvres(presets_), 0.0, 0.0, heading);
     odom_pub_ = nh.advertise<nav_msgs::Odometry>("ship/odom", 20);
-    cmd_sub_ = nh.subscribe("cmd_vel", 5, &ShipMotion::onCmdVel, this);
-    timer_ = nh.createTimer(ros::Duration(1.0 / rate_), &ShipMotion::tick, this);
+    cmd_sub_ = nh.subscribe("cmd_vel", 5, &ShipMotionNode::onCmdVel, this);
+    timer_ = nh.createTimer(ros::Duration(1.0 / rate_), &ShipMotionNode::tick, this);
   }
 
 private:
@@ -72,85 +138,54 @@ private:
       ROS_WARN_THROTTLE(2.0, "ship_motion: rejected cmd_vel: linear.x and angular.z must be finite");
       return;
     }
-    cmd_u_ = std::clamp(msg->linear.x, -15.0, 15.0);
-    cmd_r_ = std::clamp(msg->angular.z, -0.5, 0.5);
+    teleop_.speed = std::clamp(msg->linear.x, -15.0, 15.0);
+    teleop_.yaw_rate = std::clamp(msg->angular.z, -0.5, 0.5);
     last_cmd_ = ros::Time::now();
   }
 
   void tick(const ros::TimerEvent&)
   {
     const ros::Time now = ros::Time::now();
-    if (start_.isZero())
-    {
-      start_ = now;
-      last_ = now;
-    }
+    if (last_.isZero() || now < last_)
+      last_ = now;  // the first tick, or the clock jumped back
     const double dt = (now - last_).toSec();
     last_ = now;
-    const double t = (now - start_).toSec();
-    double u_target = speed_, r_target = 0.0;
     const bool teleop = !last_cmd_.isZero() && (now - last_cmd_).toSec() < 1.0;
-    if (teleop)
-    {
-      u_target = cmd_u_;
-      r_target = cmd_r_;
-    }
-    else if (manoeuvre_ == "turn" && t > turn_start_)
-      r_target = speed_ / turn_radius_;
-    else if (manoeuvre_ == "zigzag" && t > turn_start_)
-      r_target = (std::fmod(t - turn_start_, zigzag_period_) < 0.5 * zigzag_period_ ? 1.0 : -1.0) * speed_ /
-                 std::abs(turn_radius_);
-    else if (manoeuvre_ == "waypoints" && next_waypoint_ < waypoints_.size())
-    {
-      const auto& w = waypoints_[next_waypoint_];
-      if (std::hypot(w.first - x_, w.second - y_) < waypoint_radius_)
-      {
-        ROS_INFO("ship_motion: waypoint %zu reached", next_waypoint_ + 1);
-        ++next_waypoint_;
-      }
-      const double wanted = std::atan2(w.second - y_, w.first - x_);
-      const double error = std::atan2(std::sin(wanted - heading_), std::cos(wanted - heading_));
-      const double r_max = std::abs(speed_ / turn_radius_);
-      r_target = std::clamp(error / 20.0, -r_max, r_max);
-    }
-    else if (manoeuvre_ == "speed_change" && t > change_time_)
-      u_target = speed_ + (speed_2_ - speed_) * std::min(1.0, (t - change_time_) / change_duration_);
-    // Smooth: speed slews at most 0.1 m/s^2, yaw rate follows with a 5 s lag.
-    const double du = std::clamp(u_target - u_, -0.1 * dt, 0.1 * dt);
-    u_ += du;
-    r_ += (r_target - r_) * std::min(1.0, dt / 5.0);
-    heading_ += r_ * dt;
-    x_ += u_ * std::cos(heading_) * dt;
-    y_ += u_ * std::sin(heading_) * dt;
+    if (dt > 0.0)
+      ship_->step(dt, teleop ? &teleop_ : nullptr);
+    publish(now);
+  }
 
+  void publish(const ros::Time& now)
+  {
+    const double heading = ship_->heading();
     nav_msgs::Odometry odom;
     odom.header.stamp = now;
     odom.header.frame_id = world_frame_;
     odom.child_frame_id = ship_frame_;
-    odom.pose.pose.position.x = x_;
-    odom.pose.pose.position.y = y_;
-    odom.pose.pose.orientation.z = std::sin(0.5 * heading_);
-    odom.pose.pose.orientation.w = std::cos(0.5 * heading_);
-    odom.twist.twist.linear.x = u_;  // REP-105: twist in the ship frame
-    odom.twist.twist.angular.z = r_;
+    odom.pose.pose.position.x = ship_->x();
+    odom.pose.pose.position.y = ship_->y();
+    odom.pose.pose.orientation.z = std::sin(0.5 * heading);
+    odom.pose.pose.orientation.w = std::cos(0.5 * heading);
+    odom.twist.twist.linear.x = ship_->speed();  // REP-105: twist in the ship frame
+    odom.twist.twist.angular.z = ship_->yawRate();
     odom_pub_.publish(odom);
 
     geometry_msgs::TransformStamped tf;
     tf.header = odom.header;
     tf.child_frame_id = ship_frame_;
-    tf.transform.translation.x = x_;
-    tf.transform.translation.y = y_;
+    tf.transform.translation.x = ship_->x();
+    tf.transform.translation.y = ship_->y();
     tf.transform.rotation = odom.pose.pose.orientation;
     broadcaster_.sendTransform(tf);
   }
 
-  std::string manoeuvre_, world_frame_, ship_frame_;
-  double speed_, speed_2_, change_time_, change_duration_, turn_radius_, turn_start_, zigzag_period_, rate_;
-  std::vector<std::pair<double, double>> waypoints_;
-  size_t next_waypoint_ = 0;
-  double waypoint_radius_ = 30.0;
-  double x_ = 0.0, y_ = 0.0, heading_ = 0.0, u_ = 0.0, r_ = 0.0, cmd_u_ = 0.0, cmd_r_ = 0.0;
-  ros::Time start_, last_, last_cmd_;
+  Presets presets_;
+  double rate_ = 20.0;
+  std::string world_frame_, ship_frame_;
+  std::unique_ptr<tow_sim::ScriptedShip> ship_;
+  tow_sim::ScriptedShip::Teleop teleop_;
+  ros::Time last_, last_cmd_;
   ros::Publisher odom_pub_;
   ros::Subscriber cmd_sub_;
   ros::Timer timer_;
@@ -164,7 +199,7 @@ int main(int argc, char** argv)
   ros::NodeHandle nh, pnh("~");
   try
   {
-    ShipMotion ship(nh, pnh);
+    ShipMotionNode ship(nh, pnh);
     ros::spin();
   }
   catch (const std::exception& e)

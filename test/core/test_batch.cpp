@@ -375,30 +375,5 @@ TEST(Batch, BadScenariosAreRefusedNamingTheKey)
   EXPECT_EQ(status, 2);
 }
 
-TEST(Batch, ShipPathFollowsItsManoeuvres)
-{
-  Scenario sc = loadScenario(YAML::Load(R"(
-ship:
-  start_heading: 0.5
-  manoeuvres:
-    - {type: straight, speed: 2.0, duration: 50}
-    - {type: turn, speed: 2.0, radius: 100, angle: 3.14159265, direction: starboard}
-    - {type: straight, speed: 2.0, duration: 100}
-simulation: {duration: 400}
-)"));
-  const ShipHistory path = buildShipPath(sc);
-  EXPECT_NEAR(path.pose(40.0).heading, 0.5, 1e-9);
-  const double end_heading = path.pose(399.0).heading;
-  EXPECT_NEAR(end_heading, 0.5 - kPi, 0.05);  // turned 180 deg to starboard (yaw-rate lag: a little more)
-  // Turning to starboard on a 100 m radius takes the ship about 200 m to the right of its first track.
-  const Eigen::Vector2d right(std::sin(0.5), -std::cos(0.5));
-  double farthest = 0.0;
-  for (double t = 0.0; t <= 400.0; t += 0.05)
-    farthest = std::max(farthest, right.dot(Eigen::Vector2d(path.pose(t).x, path.pose(t).y)));
-  EXPECT_NEAR(farthest, 200.0, 10.0);
-  // Tow point acceleration is continuous and the speed held.
-  EXPECT_NEAR(path.towPoint(120.0).v_W.norm(), 2.0, 0.05);
-}
-
 }  // namespace
 }  // namespace tow_sim

@@ -146,7 +146,8 @@ public:
   int late_steps_ = 0;
 
 private:
-  // The ship of ship_motion_node: yaw rate follows its target with a 5 s lag.
+  // The test's own ship: its yaw rate follows its target with a 5 s lag (a gentler entry into the turn than
+  // ship_motion_node's 2 s; the documented figures are for this ship).
   void moveShip(double dt)
   {
     time_ += dt;

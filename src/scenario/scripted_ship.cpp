@@ -1,0 +1,133 @@
+#include "tow_sim/scenario/scripted_ship.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace tow_sim
+{
+namespace
+{
+constexpr double kMinRadius = 10.0;  // [m] the tightest radius a scenario allows: the course-holding limit
+
+// Heading change while the yaw rate, |r0| now, goes over to the opposite full rate `rate` with the lag tau
+// (r(t) = -rate + (r0 + rate) exp(-t / tau)) until it passes zero: tau (r0 - rate ln(1 + r0 / rate)).
+double swingBeyondReversal(double r0, double rate, double tau)
+{
+  return rate > 0.0 ? tau * (r0 - rate * std::log1p(r0 / rate)) : 0.0;
+}
+}  // namespace
+
+ScriptedShip::ScriptedShip(std::vector<Manoeuvre> manoeuvres, double x, double y, double heading)
+    : manoeuvres_(std::move(manoeuvres)),
+      x_(x),
+      y_(y),
+      heading_(heading),
+      u_(manoeuvres_.empty() ? 0.0 : manoeuvres_.front().speed),
+      course_(heading),
+      heading0_(heading),
+      speed0_(u_)
+{
+}
+
+double ScriptedShip::holdCourse(double limit) const
+{
+  return std::clamp((course_ - heading_) / kHeadingTime, -limit, limit);
+}
+
+void ScriptedShip::next()
+{
+  ++index_;
+  started_ = time_;
+  heading0_ = heading_;
+  speed0_ = u_;
+  leg_ = 0;
+}
+
+ScriptedShip::Targets ScriptedShip::targets()
+{
+  if (finished())
+    return { u_, holdCourse(std::abs(u_) / kMinRadius) };
+  const Manoeuvre& m = manoeuvres_[index_];
+  const double elapsed = time_ - started_;
+  const double turn_rate = std::abs(m.speed) / m.radius;
+  switch (m.type)
+  {
+    case Manoeuvre::Type::kStraight:
+    case Manoeuvre::Type::kSpeedChange:
+    {
+      const bool change = m.type == Manoeuvre::Type::kSpeedChange;
+      const double speed = change ? speed0_ + (m.to_speed - speed0_) * std::min(1.0, elapsed / m.duration) : m.speed;
+      const Targets t{ speed, holdCourse(std::abs(speed) / kMinRadius) };
+      if (elapsed >= m.duration)
+        next();
+      return t;
+    }
+    case Manoeuvre::Type::kTurn:
+    {
+      const double goal = heading0_ + m.direction * m.angle;
+      const double error = goal - heading_;
+      const Targets t{ m.speed, std::clamp(error / kHeadingTime, -turn_rate, turn_rate) };
+      if (std::abs(error) <= turn_rate * kHeadingTime)  // steadying: the course holds from here
+      {
+        course_ = goal;
+        next();
+      }
+      return t;
+    }
+    case Manoeuvre::Type::kZigzag:
+    {
+      const double side = (leg_ % 2 == 0 ? 1.0 : -1.0) * m.direction;
+      const Targets t{ m.speed, side * turn_rate };
+      // Reverse when the swing still to come after the reversal brings the heading to the angle.
+      const double swing = swingBeyondReversal(std::abs(r_), turn_rate, kYawLag);
+      if (side * r_ > 0.0 && side * (heading_ - heading0_) >= m.angle - swing && ++leg_ >= m.legs)
+      {
+        course_ = heading0_;  // back to the zigzag's course
+        next();
+      }
+      return t;
+    }
+    case Manoeuvre::Type::kWaypoints:
+    {
+      const Eigen::Vector2d& w = m.points[static_cast<size_t>(leg_)];
+      const double bearing = std::atan2(w.y() - y_, w.x() - x_);
+      course_ = heading_ + std::remainder(bearing - heading_, 2.0 * M_PI);
+      const Targets t{ m.speed, holdCourse(turn_rate) };
+      if (std::hypot(w.x() - x_, w.y() - y_) < m.acceptance && ++leg_ >= static_cast<int>(m.points.size()))
+      {
+        course_ = heading_;
+        next();
+      }
+      return t;
+    }
+  }
+  return { u_, 0.0 };
+}
+
+void ScriptedShip::step(double dt, const Teleop* teleop)
+{
+  Targets t{ u_, r_ };
+  if (teleop)
+  {
+    t = { teleop->speed, teleop->yaw_rate };
+    started_ += dt;  // the script waits
+  }
+  else
+  {
+    if (teleop_)  // back from teleop: go on from here
+    {
+      course_ = heading0_ = heading_;
+      speed0_ = u_;
+    }
+    t = targets();
+  }
+  teleop_ = teleop != nullptr;
+  u_ += std::clamp(t.speed - u_, -kMaxAcceleration * dt, kMaxAcceleration * dt);
+  r_ += (t.yaw_rate - r_) * std::min(1.0, dt / kYawLag);
+  heading_ += r_ * dt;
+  x_ += u_ * std::cos(heading_) * dt;
+  y_ += u_ * std::sin(heading_) * dt;
+  time_ += dt;
+}
+
+}  // namespace tow_sim
