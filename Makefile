@@ -11,7 +11,7 @@ export PATH := /usr/bin:/bin:$(PATH)
 CATKIN_ARGS := -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3
 JOBS ?= 2
 
-.PHONY: deps workspace build test sanitize fuzz soak demo offline-demo screenshot bench clean
+.PHONY: deps workspace build test sanitize fuzz soak demo offline-demo screenshot bench docs clean
 SAN_DIR := $(WS)/sanitize
 SAN_FLAGS := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all
 FUZZ_DIR := $(WS)/fuzz
@@ -91,6 +91,10 @@ offline-demo: build
 
 screenshot: build
 	$(REPO)/scripts/rviz_screenshot.sh $(REPO)/docs/rviz_demo.png 40 $(MANOEUVRE)
+
+# README.md's parameter tables and config/tow_sim.yaml, generated from the parameter tables.
+docs: build
+	$(WS)/devel/lib/tow_sim/tow_sim_param_docs $(REPO)/README.md $(REPO)/config/tow_sim.yaml
 
 bench: build
 	@for b in $(WS)/devel/lib/tow_sim/bench_*; do echo "== $$b"; $$b; done

@@ -5,6 +5,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "tow_sim/core/param_tables.h"
 #include "tow_sim/core/params.h"
 
 namespace tow_sim
@@ -22,19 +23,7 @@ const DepthAutopilotParams& validated(const DepthAutopilotParams& p)
 
 void DepthAutopilotParams::validate(const std::string& prefix) const
 {
-  requireInRange(prefix + "kp", kp, 0.0, 10.0, "[rad/m]");
-  requireInRange(prefix + "ki", ki, 0.0, 10.0, "[rad/(m s)]");
-  requireInRange(prefix + "kd", kd, 0.0, 100.0, "[rad/(m/s)]");
-  requireInRange(prefix + "max_elevator", max_elevator, 0.0, kHalfPi, "[rad]", true);
-  requireInRange(prefix + "rudder_kp", rudder_kp, 0.0, 10.0, "[rad/m]");
-  requireInRange(prefix + "rudder_kd", rudder_kd, 0.0, 100.0, "[rad/(m/s)]");
-  requireInRange(prefix + "max_rudder", max_rudder, 0.0, kHalfPi, "[rad]", true);
-  requireInRange(prefix + "track_spacing", track_spacing, 0.01, 1000.0, "[m]");
-  requireInRange(prefix + "track_length", track_length, std::max(10.0, 2.0 * track_spacing), 1e6,
-                 "[m] (at least 10 m and two track_spacing)");
-  requireInRange(prefix + "thrust", thrust, -1e6, 1e6, "[N]");
-  requireInRange(prefix + "odom_timeout", odom_timeout, 0.0, 3600.0, "[s]", true);
-  requireInRange(prefix + "max_depth", max_depth, 0.0, 1e5, "[m]", true);
+  validateParams(autopilotParams(), *this, prefix);
 }
 
 PastTrack::PastTrack(double spacing, double length)

@@ -151,6 +151,20 @@ EquilibriumResult steadyTowEquilibrium(const ChainModel& model, const ChainData&
 
 namespace
 {
+// The first of the candidate directions from which Newton converges to a stable balance, into s.
+template <size_t N>
+bool firstStable(const Balance& b, const Eigen::Vector3d (&candidates)[N], double scale, int& iterations,
+                 double& residual, Eigen::Vector3d& s)
+{
+  for (const Eigen::Vector3d& start : candidates)
+  {
+    s = start;
+    if (solveDirection(b, s, iterations, residual, scale) && isStable(b, s))
+      return true;
+  }
+  return false;
+}
+
 EquilibriumResult shoot(const ChainModel& model, const ChainData& data, double t, const Eigen::Vector3d& tow_point_W,
                         const Eigen::Vector3d& ship_velocity_W, const Eigen::Matrix3Xd& joints, int iterations)
 {
@@ -175,19 +189,9 @@ EquilibriumResult shoot(const ChainModel& model, const ChainData& data, double t
     const Eigen::Vector3d candidates[] = { guess, (guess - 0.5 * Eigen::Vector3d::UnitZ()).normalized(),
                                            (Eigen::AngleAxisd(0.3, guess.unitOrthogonal()) * guess).normalized(),
                                            -guess };
-    bool found = false;
     double residual = 0.0;
     Eigen::Vector3d s;
-    for (const Eigen::Vector3d& start : candidates)
-    {
-      s = start;
-      if (solveDirection(b, s, result.iterations, residual, scale) && isStable(b, s))
-      {
-        found = true;
-        break;
-      }
-    }
-    if (!found)
+    if (!firstStable(b, candidates, scale, result.iterations, residual, s))
     {
       std::ostringstream os;
       os << "equilibrium: no stable direction balances element " << e + 1 << " of " << n

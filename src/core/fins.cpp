@@ -1,5 +1,7 @@
 #include "tow_sim/core/fins.h"
 
+#include "tow_sim/core/param_tables.h"
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -89,11 +91,7 @@ AngleTable AngleTable::defaultDrag()
 
 void validate(const FinPairParams& f, const std::string& p)
 {
-  requireInRange(p + ".lift_constant", f.lift_constant, 0.0, 1e7, "[N s^2/m^2]");
-  requireInRange(p + ".drag_constant", f.drag_constant, 0.0, 1e7, "[N s^2/m^2]");
-  requireInRange(p + ".max_deflection", f.max_deflection, 0.0, kHalfPi, "[rad]", true);
-  requireInRange(p + ".max_rate", f.max_rate, 0.0, 100.0, "[rad/s]", true);
-  requireInRange(p + ".center_of_pressure_offset", f.center_of_pressure_offset, -10.0, 10.0, "[m]");
+  validateParams(finParams(), f, p);
 }
 
 double FinServo::command(double t, double angle)

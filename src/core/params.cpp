@@ -1,5 +1,7 @@
 #include "tow_sim/core/params.h"
 
+#include "tow_sim/core/param_tables.h"
+
 #include <algorithm>
 
 #include <cmath>
@@ -71,11 +73,7 @@ Eigen::Vector3d Environment::profileAt(double depth) const
 
 void validate(const Environment& env, const std::string& p)
 {
-  requireInRange(p + ".gravity", env.gravity, 0.0, 100.0, "[m/s^2]");
-  requireInRange(p + ".water_density", env.water_density, 0.0, 2000.0, "[kg/m^3]");
-  const char* axes[] = { ".current[0]", ".current[1]", ".current[2]" };
-  for (int i = 0; i < 3; ++i)
-    requireInRange(p + axes[i], env.current_W[i], -20.0, 20.0, "[m/s]");
+  validateParams(environmentParams(), env, p);
   requireInRange(p + ".current_profile (number of samples)", static_cast<double>(env.current_profile.size()), 0.0,
                  10000.0, "[-]");
   for (std::size_t j = 0; j < env.current_profile.size(); ++j)
@@ -92,41 +90,17 @@ void validate(const Environment& env, const std::string& p)
 
 void validate(const CableParams& c, const std::string& p)
 {
-  requireInRange(p + ".length", c.length, 0.0, 1e5, "[m]", true);
-  requireInRange(p + ".segments", c.segments, 1.0, 100000.0, "[-]");
-  requireInRange(p + ".diameter", c.diameter, 0.0, 1.0, "[m]", true);
-  requireInRange(p + ".mass_per_length", c.mass_per_length, 0.0, 1000.0, "[kg/m]", true);
-  requireInRange(p + ".normal_drag_coefficient", c.normal_drag_coefficient, 0.0, 10.0, "[-]");
-  requireInRange(p + ".tangential_drag_coefficient", c.tangential_drag_coefficient, 0.0, 1.0, "[-]");
-  if (c.c1)
-    requireInRange(p + ".c1", *c.c1, 0.0, 1e5, "[N s^2/m^3]");
-  if (c.c2)
-    requireInRange(p + ".c2", *c.c2, 0.0, 1e5, "[N s^2/m^3]");
-  requireInRange(p + ".added_mass_coefficient", c.added_mass_coefficient, 0.0, 10.0, "[-]");
+  validateParams(cableParams(), c, p);
 }
 
 void validate(const EndElementParams& e, const std::string& p)
 {
-  requireInRange(p + ".length", e.length, 0.0, 100.0, "[m]", true);
-  requireInRange(p + ".mass", e.mass, 0.0, 1e6, "[kg]", true);
-  requireInRange(p + ".displaced_volume", e.displaced_volume, 0.0, 1e3, "[m^3]");
-  requireInRange(p + ".cg_from_bail", e.cg_from_bail, 0.0, e.length, "[m] (0 .. length)");
-  requireInRange(p + ".cb_from_bail", e.cb_from_bail, 0.0, e.length, "[m] (0 .. length)");
-  if (e.transverse_inertia)
-    requireInRange(p + ".transverse_inertia", *e.transverse_inertia, 0.0, 1e9, "[kg m^2]", true);
-  requireInRange(p + ".diameter", e.diameter, 0.0, 10.0, "[m]", true);
-  requireInRange(p + ".normal_drag_coefficient", e.normal_drag_coefficient, 0.0, 10.0, "[-]");
-  requireInRange(p + ".tangential_drag_coefficient", e.tangential_drag_coefficient, 0.0, 10.0, "[-]");
-  requireInRange(p + ".added_mass_coefficient", e.added_mass_coefficient, 0.0, 10.0, "[-]");
+  validateParams(endElementParams(), e, p);
 }
 
 void validate(const NumericsParams& n, const std::string& p)
 {
-  requireInRange(p + ".abs_tol", n.abs_tol, 0.0, 1.0, "[-]", true);
-  requireInRange(p + ".rel_tol", n.rel_tol, 0.0, 1.0, "[-]", true);
-  requireInRange(p + ".max_step", n.max_step, 0.0, 10.0, "[s]", true);
-  requireInRange(p + ".fixed_step", n.fixed_step, 0.0, 1.0, "[s]", true);
-  requireInRange(p + ".tangential_smoothing_speed", n.tangential_smoothing_speed, 0.0, 1.0, "[m/s]", true);
+  validateParams(numericsParams(), n, p);
 }
 
 void validate(const WinchParams& w, const CableParams& c, const std::string& p)

@@ -1,5 +1,6 @@
 #include "tow_sim/core/seabed.h"
 
+#include "tow_sim/core/param_tables.h"
 #include "tow_sim/core/params.h"
 #include "tow_sim/core/simulator.h"
 
@@ -12,8 +13,7 @@ namespace tow_sim
 {
 void validate(const SeabedParams& s, const std::string& p)
 {
-  if (s.type == SeabedParams::Type::kFlat)
-    requireInRange(p + ".depth", s.depth, 0.0, 12000.0, "[m]", true);
+  validateParams(seabedParams(), s, p);
   if (s.type == SeabedParams::Type::kGrid)
   {
     const std::string g = s.grid_file.empty() ? p + ".grid" : p + ".grid_file (" + s.grid_file + ")";
@@ -30,12 +30,6 @@ void validate(const SeabedParams& s, const std::string& p)
         requireInRange(g + ".depth[" + std::to_string(j) + "][" + std::to_string(i) + "]", s.grid.depth(j, i), 0.0,
                        12000.0, "[m]");
   }
-  requireInRange(p + ".stiffness", s.stiffness, 0.0, 1e8, "[N/m per m]", true);
-  requireInRange(p + ".damping", s.damping, 0.0, 1e8, "[N s/m per m]");
-  requireInRange(p + ".vehicle_stiffness", s.vehicle_stiffness, 0.0, 1e9, "[N/m]", true);
-  requireInRange(p + ".vehicle_damping", s.vehicle_damping, 0.0, 1e9, "[N s/m]");
-  requireInRange(p + ".friction", s.friction, 0.0, 5.0, "[-]");
-  requireInRange(p + ".friction_speed", s.friction_speed, 0.0, 10.0, "[m/s]", true);
 }
 
 Seabed::Seabed(const SeabedParams& params) : p_(params)

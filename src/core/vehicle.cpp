@@ -6,6 +6,7 @@
 
 #include "tow_sim/core/added_mass.h"
 #include "tow_sim/core/geometry.h"
+#include "tow_sim/core/param_tables.h"
 
 namespace tow_sim
 {
@@ -31,34 +32,19 @@ Eigen::Vector3d headingHint(const Eigen::Vector3d& v_through_water_W)
 
 void validate(const VehicleParams& v, const std::string& p)
 {
-  requireInRange(p + ".tail_from_bail", v.tail_from_bail, 0.0, 100.0, "[m]", true);
-  requireInRange(p + ".nose_from_bail", v.nose_from_bail, 0.0, 100.0, "[m]");
-  const double lo = -v.nose_from_bail, hi = v.tail_from_bail;
-  const char* along = "[m] (from -nose_from_bail to tail_from_bail)";
-  requireInRange(p + ".cg_from_bail", v.cg_from_bail, lo, hi, along);
-  requireInRange(p + ".cb_from_bail", v.cb_from_bail, lo, hi, along);
-  requireInRange(p + ".horizontal_fin_from_bail", v.horizontal_fin_from_bail, lo, hi, along);
-  requireInRange(p + ".vertical_fin_from_bail", v.vertical_fin_from_bail, lo, hi, along);
-  requireInRange(p + ".mass", v.mass, 0.0, 1e6, "[kg]", true);
-  requireInRange(p + ".displaced_volume", v.displaced_volume, 0.0, 1e3, "[m^3]");
+  // The table checks every number (fins included); then what it cannot say.
+  validateParams(vehicleParams(), v, p);
   if (!v.inertia_B.allFinite() ||
       (v.inertia_B - v.inertia_B.transpose()).cwiseAbs().maxCoeff() > 1e-9 * v.inertia_B.norm() ||
       Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(v.inertia_B).eigenvalues().minCoeff() <= 0.0)
     throw std::invalid_argument(p +
                                 ".inertia must be a finite, symmetric, positive definite 3x3 matrix [kg m^2] "
                                 "about the CG in body axes (xx, yy, zz > 0)");
-  requireInRange(p + ".c1", v.c1, 0.0, 1e6, "[N s^2/m^3]");
-  requireInRange(p + ".c2", v.c2, 0.0, 1e6, "[N s^2/m^3]");
-  requireInRange(p + ".added_mass.e", v.added_mass_a, 0.0, 1e6, "[kg]");
   if (v.prolate_spheroid)
-    requireInRange(p + ".added_mass.prolate_spheroid.center_from_bail", v.prolate_spheroid->center_from_bail, lo, hi,
-                   along);
+    requireInRange(p + ".added_mass.prolate_spheroid.center_from_bail", v.prolate_spheroid->center_from_bail,
+                   -v.nose_from_bail, v.tail_from_bail, "[m] (from -nose_from_bail to tail_from_bail)");
   else
     validateAddedMass(v.added_mass_b, p + ".added_mass.matrix");
-  requireInRange(p + ".max_thrust", v.max_thrust, 0.0, 1e6, "[N]");
-  requireInRange(p + ".thrust_offset_z", v.thrust_offset_z, -10.0, 10.0, "[m]");
-  validate(v.rudder, p + ".rudder");
-  validate(v.elevator, p + ".elevator");
 }
 
 Eigen::Matrix3d BodyFrame::rotation() const

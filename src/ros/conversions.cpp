@@ -43,6 +43,22 @@ YAML::Node toYaml(XmlRpc::XmlRpcValue& value)
   }
 }
 
+YAML::Node privateParameters(const ros::NodeHandle& pnh)
+{
+  XmlRpc::XmlRpcValue tree;
+  return pnh.getParam(pnh.getNamespace(), tree) ? toYaml(tree) : YAML::Node();
+}
+
+std::invalid_argument withSlashes(const std::invalid_argument& e)
+{
+  std::string message = e.what();
+  const size_t end = message.find_first_of(" :");
+  for (size_t i = 0; i < end && i < message.size(); ++i)
+    if (message[i] == '.')
+      message[i] = '/';
+  return std::invalid_argument(message);
+}
+
 geometry_msgs::Point toPoint(const Eigen::Vector3d& v)
 {
   geometry_msgs::Point p;

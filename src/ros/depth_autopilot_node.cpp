@@ -6,55 +6,12 @@
 #include <stdexcept>
 
 #include "tow_sim/FinCommand.h"
-#include "tow_sim/core/params.h"
+#include "tow_sim/ros/conversions.h"
 
 namespace tow_sim
 {
 namespace
 {
-void readDouble(const ros::NodeHandle& pnh, const std::string& key, double& value, const char* unit)
-{
-  if (pnh.hasParam(key) && !pnh.getParam(key, value))
-    throw std::invalid_argument(pnh.resolveName(key) + ": must be a number " + unit);
-}
-
-DepthAutopilotParams readParams(const ros::NodeHandle& pnh)
-{
-  DepthAutopilotParams p;
-  readDouble(pnh, "kp", p.kp, "[rad/m]");
-  readDouble(pnh, "ki", p.ki, "[rad/(m s)]");
-  readDouble(pnh, "kd", p.kd, "[rad/(m/s)]");
-  readDouble(pnh, "max_elevator", p.max_elevator, "[rad]");
-  readDouble(pnh, "rudder_kp", p.rudder_kp, "[rad/m]");
-  readDouble(pnh, "rudder_kd", p.rudder_kd, "[rad/(m/s)]");
-  readDouble(pnh, "max_rudder", p.max_rudder, "[rad]");
-  readDouble(pnh, "track_spacing", p.track_spacing, "[m]");
-  readDouble(pnh, "track_length", p.track_length, "[m]");
-  readDouble(pnh, "thrust", p.thrust, "[N]");
-  readDouble(pnh, "odom_timeout", p.odom_timeout, "[s]");
-  readDouble(pnh, "max_depth", p.max_depth, "[m]");
-  if (pnh.hasParam("track_keeping") && !pnh.getParam("track_keeping", p.track_keeping))
-    throw std::invalid_argument(pnh.resolveName("track_keeping") + ": must be true or false");
-  p.validate(pnh.getNamespace() + "/");
-  return p;
-}
-
-double readRate(const ros::NodeHandle& pnh)
-{
-  double rate = 10.0;
-  readDouble(pnh, "rate", rate, "[Hz]");
-  requireInRange(pnh.resolveName("rate"), rate, 0.1, 1000.0, "[Hz]");
-  return rate;
-}
-
-std::string readFrame(const ros::NodeHandle& pnh)
-{
-  std::string frame = "odom";
-  if (pnh.hasParam("world_frame") && (!pnh.getParam("world_frame", frame) || frame.empty()))
-    throw std::invalid_argument(pnh.resolveName("world_frame") + ": must be a non-empty string");
-  return frame;
-}
-
 // Stamp in seconds; a zero stamp is taken as now.
 double stampOf(const std_msgs::Header& header)
 {
@@ -65,9 +22,10 @@ double stampOf(const std_msgs::Header& header)
 DepthAutopilotNode::DepthAutopilotNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     : nh_(nh),
       pnh_(pnh),
-      params_(readParams(pnh)),
-      rate_(readRate(pnh)),
-      world_frame_(readFrame(pnh)),
+      node_params_(ros_conv::readPrivateParams<AutopilotNodeParams>(pnh, autopilotNodeParams(), validate)),
+      params_(node_params_.controller),
+      rate_(node_params_.rate),
+      world_frame_(node_params_.world_frame),
       autopilot_(params_)
 {
   vehicle_sub_ = nh_.subscribe("vehicle/odom", 10, &DepthAutopilotNode::onVehicleOdometry, this);

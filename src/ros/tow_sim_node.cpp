@@ -39,88 +39,15 @@ bool guarded(const char* what, F&& f)
   }
 }
 
-// The core names keys "section.key"; on the parameter server they are "section/key".
-std::invalid_argument withSlashes(const std::invalid_argument& e)
-{
-  std::string message = e.what();
-  const size_t end = message.find_first_of(" :");
-  for (size_t i = 0; i < end && i < message.size(); ++i)
-    if (message[i] == '.')
-      message[i] = '/';
-  return std::invalid_argument(message);
-}
-
-double readDouble(const ros::NodeHandle& pnh, const std::string& key, double fallback, double lo, double hi,
-                  const char* unit, bool lo_open = false)
-{
-  double value = fallback;
-  if (pnh.hasParam(key) && !pnh.getParam(key, value))
-    throw std::invalid_argument(pnh.resolveName(key) + ": must be a number " + unit);
-  requireInRange(pnh.resolveName(key), value, lo, hi, unit, lo_open);
-  return value;
-}
-
-std::string readString(const ros::NodeHandle& pnh, const std::string& key, const std::string& fallback)
-{
-  std::string value = fallback;
-  if (pnh.hasParam(key) && !pnh.getParam(key, value))
-    throw std::invalid_argument(pnh.resolveName(key) + ": must be a string");
-  return value;
-}
-
-NodeParams readNodeParams(const ros::NodeHandle& pnh)
-{
-  NodeParams p;
-  p.world_frame = readString(pnh, "world_frame", p.world_frame);
-  p.vehicle_frame = readString(pnh, "vehicle_frame", p.vehicle_frame);
-  if (p.world_frame.empty() || p.vehicle_frame.empty() || p.world_frame == p.vehicle_frame)
-    throw std::invalid_argument(pnh.resolveName("vehicle_frame") +
-                                ": world_frame and vehicle_frame must be "
-                                "non-empty and different");
-  std::vector<double> tow;
-  if (pnh.hasParam("tow_point"))
-  {
-    if (!pnh.getParam("tow_point", tow) || tow.size() != 3)
-      throw std::invalid_argument(pnh.resolveName("tow_point") +
-                                  ": must be a list of 3 numbers [x, y, z] [m] in "
-                                  "the ship frame");
-    for (int i = 0; i < 3; ++i)
-      requireInRange(pnh.resolveName("tow_point") + "[" + std::to_string(i) + "]", tow[i], -1000.0, 1000.0, "[m]");
-    p.tow_point_S = Eigen::Vector3d(tow[0], tow[1], tow[2]);
-  }
-  p.physics_rate = readDouble(pnh, "physics_rate", p.physics_rate, 1.0, 1000.0, "[Hz]");
-  p.publish_rate = readDouble(pnh, "publish_rate", p.publish_rate, 0.1, 100.0, "[Hz]");
-  p.odom_delay = readDouble(pnh, "odom_delay", p.odom_delay, 0.0, 10.0, "[s]");
-  p.max_extrapolation = readDouble(pnh, "max_extrapolation", p.max_extrapolation, 0.0, 60.0, "[s]");
-  p.max_ship_speed = readDouble(pnh, "max_ship_speed", p.max_ship_speed, 0.0, 1000.0, "[m/s]", true);
-  p.max_odom_age = readDouble(pnh, "max_odom_age", p.max_odom_age, 0.0, 1e6, "[s]", true);
-  p.initial_shape = readString(pnh, "initial_shape", p.initial_shape);
-  if (p.initial_shape != "equilibrium" && p.initial_shape != "line" && p.initial_shape != "hanging")
-    throw std::invalid_argument(pnh.resolveName("initial_shape") + " = '" + p.initial_shape +
-                                "' must be 'equilibrium', 'line' or 'hanging'");
-  p.initial_angle = readDouble(pnh, "initial_angle", p.initial_angle, 0.0, M_PI / 2, "[rad]");
-  p.tension_color_max = readDouble(pnh, "tension_color_max", p.tension_color_max, 0.0, 1e9, "[N]", true);
-  p.force_arrow_scale = readDouble(pnh, "force_arrow_scale", p.force_arrow_scale, 0.0, 10.0, "[m/N]", true);
-  p.cable_marker_width = readDouble(pnh, "cable_marker_width", p.cable_marker_width, 0.0, 100.0, "[m]", true);
-  p.vehicle_diameter = readDouble(pnh, "vehicle_diameter", p.vehicle_diameter, 0.0, 100.0, "[m]", true);
-  if (pnh.hasParam("print_status") && !pnh.getParam("print_status", p.print_status))
-    throw std::invalid_argument(pnh.resolveName("print_status") + ": must be true or false");
-  return p;
-}
-
 SimulationConfig readConfig(const ros::NodeHandle& pnh)
 {
-  XmlRpc::XmlRpcValue tree;
-  YAML::Node root;
-  if (pnh.getParam(pnh.getNamespace(), tree))
-    root = ros_conv::toYaml(tree);
   try
   {
-    return loadConfig(root, pnh.getNamespace() + "/");
+    return loadConfig(ros_conv::privateParameters(pnh), pnh.getNamespace() + "/");
   }
   catch (const std::invalid_argument& e)
   {
-    throw withSlashes(e);
+    throw ros_conv::withSlashes(e);
   }
 }
 
@@ -140,7 +67,7 @@ InitialShape initialShape(const NodeParams& p)
 TowSimNode::TowSimNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     : nh_(nh),
       pnh_(pnh),
-      params_(readNodeParams(pnh)),
+      params_(ros_conv::readPrivateParams<NodeParams>(pnh, nodeParams(), validate)),
       config_(readConfig(pnh)),
       ship_(std::make_shared<ShipHistory>(params_.max_extrapolation, kTrackCapacity)),
       run_(config_, ship_, initialShape(params_))

@@ -4,81 +4,253 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "tow_sim/config/yaml_section.h"
+#include "tow_sim/config/param_yaml.h"
+#include "tow_sim/core/param_tables.h"
+#include "tow_sim/scenario/scenario_tables.h"
 
 namespace tow_sim
 {
 namespace
 {
 using detail::fail;
+using detail::ParamReader;
 using detail::Section;
-constexpr double kPi = 3.14159265358979323846;
-
-const char* typeName(Manoeuvre::Type t)
-{
-  switch (t)
-  {
-    case Manoeuvre::Type::kStraight:
-      return "straight";
-    case Manoeuvre::Type::kSpeedChange:
-      return "speed_change";
-    case Manoeuvre::Type::kTurn:
-      return "turn";
-    case Manoeuvre::Type::kZigzag:
-      return "zigzag";
-    case Manoeuvre::Type::kWaypoints:
-      return "waypoints";
-  }
-  return "straight";
-}
-
-Manoeuvre readManoeuvre(Section s, double previous_speed)
-{
-  Manoeuvre m;
-  m.speed = previous_speed;
-  const std::string type = s.text("type", "straight");
-  const Manoeuvre::Type types[] = { Manoeuvre::Type::kStraight, Manoeuvre::Type::kSpeedChange, Manoeuvre::Type::kTurn,
-                                    Manoeuvre::Type::kZigzag, Manoeuvre::Type::kWaypoints };
-  bool known = false;
-  for (Manoeuvre::Type t : types)
-    if (type == typeName(t))
-    {
-      m.type = t;
-      known = true;
-    }
-  if (!known)
-    fail(s.path("type"), "= '" + type + "' must be straight, speed_change, turn, zigzag or waypoints");
-  s.read("speed", m.speed);
-  s.read("duration", m.duration);
-  s.read("to_speed", m.to_speed);
-  s.read("radius", m.radius);
-  s.read("angle", m.angle);
-  std::string direction = s.text("direction", "port");
-  if (direction != "port" && direction != "starboard")
-    fail(s.path("direction"), "= '" + direction + "' must be port or starboard");
-  m.direction = direction == "port" ? 1 : -1;
-  s.read("legs", m.legs);
-  s.read("acceptance", m.acceptance);
-  const std::vector<double> points = s.list("points");
-  if (points.size() % 2 != 0)
-    fail(s.path("points"), "must hold x, y pairs [m]: an even count of numbers");
-  for (size_t i = 0; i + 1 < points.size(); i += 2)
-    m.points.emplace_back(points[i], points[i + 1]);
-  s.finish();
-  requireInRange(s.path("speed"), m.speed, -15.0, 15.0, "[m/s]");
-  requireInRange(s.path("duration"), m.duration, 0.0, 1e6, "[s]", true);
-  requireInRange(s.path("to_speed"), m.to_speed, -15.0, 15.0, "[m/s]");
-  requireInRange(s.path("radius"), m.radius, 10.0, 1e5, "[m]");
-  requireInRange(s.path("angle"), m.angle, 0.0, 100.0, "[rad]", true);
-  requireInRange(s.path("legs"), m.legs, 1.0, 1000.0, "[-]");
-  requireInRange(s.path("acceptance"), m.acceptance, 1.0, 1e4, "[m]");
-  if (m.type == Manoeuvre::Type::kWaypoints && m.points.empty())
-    fail(s.path("points"), "the waypoints manoeuvre needs at least one [x, y] pair");
-  return m;
-}
+constexpr double kHalfPi = 1.57079632679489661923;
+constexpr bool kOpen = true, kClosed = false;
 }  // namespace
 
-Scenario loadScenarioUnguarded(const YAML::Node& root, const std::string& base_dir);
+const ParamTable<Scenario>& shipParams()
+{
+  using S = Scenario;
+  static const ParamTable<S> table =
+      ParamTable<S>()
+          .vector3("tow_point", &S::tow_point_S, "m", -1000.0, 1000.0, "tow point in the ship frame (FLU)")
+          .custom("start_position", "m", "[0, 0]", "[x, y]", "the ship's start, world")
+          .number("start_heading", &S::start_heading, "rad", -100.0, 100.0, kClosed,
+                  "ENU, counter-clockwise from +x (east)")
+          .custom("manoeuvres", "", "[straight at 2 m/s for 60 s]", "a list (keys below)",
+                  "one after the other; the speed carries over when omitted; straight on after the last");
+  return table;
+}
+
+const ParamTable<Manoeuvre>& manoeuvreParams()
+{
+  using M = Manoeuvre;
+  static const ParamTable<M> table =
+      ParamTable<M>()
+          .choice("type", &M::type,
+                  { { "straight", M::Type::kStraight },
+                    { "speed_change", M::Type::kSpeedChange },
+                    { "turn", M::Type::kTurn },
+                    { "zigzag", M::Type::kZigzag },
+                    { "waypoints", M::Type::kWaypoints } },
+                  "see The scripted ship")
+          .number("speed", &M::speed, "m/s", -15.0, 15.0, kClosed, "ship speed (the previous one when omitted)")
+          .number("duration", &M::duration, "s", 0.0, 1e6, kOpen, "straight, speed_change")
+          .number("to_speed", &M::to_speed, "m/s", -15.0, 15.0, kClosed, "speed_change: linear over duration")
+          .number("radius", &M::radius, "m", 10.0, 1e5, kClosed, "turn, zigzag, waypoints: the tightest turn")
+          .number("angle", &M::angle, "rad", 0.0, 100.0, kOpen, "turn: through this; zigzag: ± this about the course")
+          .choice("direction", &M::direction, { { "port", 1 }, { "starboard", -1 } },
+                  "turn, zigzag: first to this side")
+          .integer("legs", &M::legs, "-", 1, 1000, "zigzag: swings")
+          .number("acceptance", &M::acceptance, "m", 1.0, 1e4, kClosed, "waypoints: reached within this")
+          .custom("points", "m", "[]", "x, y pairs", "waypoints: [x1, y1, x2, y2, …] world");
+  return table;
+}
+
+const ParamTable<CommandEvent>& commandParams()
+{
+  using C = CommandEvent;
+  static const ParamTable<C> table =
+      ParamTable<C>()
+          .number("t", &C::t, "s", 0.0, 1e7, kClosed, "from this time on")
+          .number("rudder", &C::rudder, "rad", -kHalfPi, kHalfPi, kClosed, "then saturated by the vehicle's limits")
+          .number("elevator", &C::elevator, "rad", -kHalfPi, kHalfPi, kClosed, "likewise")
+          .number("thrust", &C::thrust, "N", -1e6, 1e6, kClosed, "likewise")
+          .number("payout_rate", &C::payout_rate, "m/s", -20.0, 20.0, kClosed,
+                  "winch (needs winch.enabled; saturated at winch.max_rate); omitted: 0");
+  return table;
+}
+
+const ParamTable<AutopilotLoop>& autopilotLoopParams()
+{
+  using A = AutopilotLoop;
+  static const ParamTable<A> table =
+      ParamTable<A>()
+          .number("rate", &A::rate, "Hz", 0.1, 1000.0, kClosed, "fin commands")
+          .nest("", &A::params, autopilotParams())
+          .custom("setpoints", "s, m", "[] (hold the first depth)", "depth or altitude in [0, max_depth]",
+                  "[{t: 100, depth: 221.8}, {t: 600, altitude: 25}]: each from its time on; altitude needs a seabed");
+  return table;
+}
+
+const ParamTable<InitialShape>& initialStateParams()
+{
+  using I = InitialShape;
+  static const ParamTable<I> table =
+      ParamTable<I>()
+          .choice("type", &I::type,
+                  { { "equilibrium", I::Type::kEquilibrium },
+                    { "line", I::Type::kLine },
+                    { "hanging", I::Type::kHanging },
+                    { "points", I::Type::kPoints } },
+                  "the steady tow (a line if none is found), a line along direction, straight down, or points")
+          .vector3("direction", &I::line_direction_S, "-", -1e6, 1e6,
+                   "ship frame (FLU), not zero: the line's direction")
+          .custom("points", "m", "[]", "3 (ν + 1) numbers", "joints x_2 … x_{ν+2}, world, x y z each");
+  return table;
+}
+
+const ParamTable<Scenario>& simulationParams()
+{
+  using S = Scenario;
+  static const ParamTable<S> table =
+      ParamTable<S>()
+          .number("duration", &S::duration, "s", 0.0, 1e7, kOpen, "simulated time")
+          .number("output_interval", &S::output_interval, "s", 1e-3, 1e5, kClosed, "timeseries.csv rows")
+          .number("shape_interval", &S::shape_interval, "s", 1e-3, 1e7, kClosed, "shapes.csv");
+  return table;
+}
+
+namespace
+{
+void readShip(ParamReader r, Scenario& sc)
+{
+  r.read(shipParams(), sc);
+  Section& ship = r.at("");
+  const std::vector<double> start = ship.list("start_position");
+  if (!start.empty() && start.size() != 2)
+    fail(ship.path("start_position"), "must be [x, y] [m]");
+  if (!start.empty())
+    sc.start_position = Eigen::Vector2d(start[0], start[1]);
+  double speed = 2.0;
+  for (Section item : ship.items("manoeuvres"))
+  {
+    Manoeuvre m;
+    m.speed = speed;
+    ParamReader mr(item);
+    mr.read(manoeuvreParams(), m);
+    const std::vector<double> points = mr.at("").list("points");
+    if (points.size() % 2 != 0)
+      fail(item.path("points"), "must hold x, y pairs [m]: an even count of numbers");
+    for (size_t i = 0; i + 1 < points.size(); i += 2)
+      m.points.emplace_back(points[i], points[i + 1]);
+    mr.finish();
+    validateParams(manoeuvreParams(), m, item.name());
+    if (m.type == Manoeuvre::Type::kWaypoints && m.points.empty())
+      fail(item.path("points"), "the waypoints manoeuvre needs at least one [x, y] pair");
+    sc.manoeuvres.push_back(m);
+    speed = m.type == Manoeuvre::Type::kSpeedChange ? m.to_speed : m.speed;
+  }
+  r.finish();
+  validateParams(shipParams(), sc, ship.name());
+  if (sc.manoeuvres.empty())
+    sc.manoeuvres.push_back(Manoeuvre());
+}
+
+void readCommands(Section& top, Scenario& sc)
+{
+  for (Section item : top.items("commands"))
+  {
+    CommandEvent e;
+    ParamReader r(item);
+    r.read(commandParams(), e);
+    r.finish();
+    if (e.payout_rate != 0.0 && !sc.config.winch.enabled)
+      fail(item.path("payout_rate"), "needs the winch: winch.enabled is false");
+    validateParams(commandParams(), e, item.name());
+    sc.commands.push_back(e);
+  }
+  std::stable_sort(sc.commands.begin(), sc.commands.end(),
+                   [](const CommandEvent& a, const CommandEvent& b) { return a.t < b.t; });
+}
+
+void readSetpoints(Section& a, const Scenario& sc, AutopilotLoop& ap)
+{
+  for (Section item : a.items("setpoints"))
+  {
+    AutopilotSetpoint sp;
+    item.read("t", sp.t);
+    const bool has_depth = item.has("depth"), has_altitude = item.has("altitude");
+    if (has_depth == has_altitude)
+      fail(item.name(), "needs exactly one of depth [m] and altitude [m]");
+    sp.altitude = has_altitude;
+    item.read(has_altitude ? "altitude" : "depth", sp.value);
+    item.finish();
+    requireInRange(item.path("t"), sp.t, 0.0, 1e7, "[s]");
+    requireInRange(item.path(has_altitude ? "altitude" : "depth"), sp.value, 0.0, ap.params.max_depth, "[m]");
+    if (sp.altitude && sc.config.seabed.type == SeabedParams::Type::kNone)
+      fail(item.path("altitude"), "needs a seabed: seabed.type is none");
+    ap.setpoints.push_back(sp);
+  }
+  std::stable_sort(ap.setpoints.begin(), ap.setpoints.end(),
+                   [](const AutopilotSetpoint& x, const AutopilotSetpoint& y) { return x.t < y.t; });
+}
+
+void readAutopilot(Section& top, Scenario& sc)
+{
+  if (!top.has("autopilot"))
+    return;
+  AutopilotLoop& ap = sc.autopilot;
+  ap.enabled = true;
+  ParamReader r(top.child("autopilot"));
+  r.read(autopilotLoopParams(), ap);
+  validateParams(autopilotLoopParams(), ap, r.at("").name());  // before the setpoints, checked against max_depth
+  readSetpoints(r.at(""), sc, ap);
+  r.finish();
+  for (std::size_t i = 0; i < sc.commands.size(); ++i)
+  {
+    const CommandEvent& c = sc.commands[i];
+    if (c.rudder != 0.0 || c.elevator != 0.0 || c.thrust != 0.0)
+      fail("commands[" + std::to_string(i) + "]",
+           "rudder, elevator and thrust belong to the autopilot when there is one (payout_rate alone is allowed)");
+  }
+}
+
+void readInitialState(Section& top, Scenario& sc)
+{
+  if (!top.has("initial_state"))
+    return;
+  ParamReader r(top.child("initial_state"));
+  InitialShape& init = sc.initial;
+  r.read(initialStateParams(), init);
+  Section& s = r.at("");
+  const std::vector<double> p = s.list("points");
+  r.finish();
+  if (init.line_direction_S.norm() < 1e-9 || !init.line_direction_S.allFinite())
+    fail(s.path("direction"), "must be a finite, non-zero [x, y, z] in the ship frame");
+  const size_t joints = static_cast<size_t>(sc.config.cable.segments) + 1;
+  if (init.type != InitialShape::Type::kPoints)
+    return;
+  if (p.size() != 3 * joints)
+    fail(s.path("points"), "must hold 3 (nu + 1) = " + std::to_string(3 * joints) +
+                               " numbers (joints x_2 .. x_{nu+2}, world, x y z each); got " + std::to_string(p.size()));
+  init.points = Eigen::Map<const Eigen::Matrix3Xd>(p.data(), 3, static_cast<Eigen::Index>(joints));
+}
+
+Scenario loadScenarioUnguarded(const YAML::Node& root, const std::string& base_dir)
+{
+  if (!root || root.IsNull() || !root.IsMap())
+    fail("scenario",
+         "must be a mapping of sections (ship, commands, simulation, ...): the file is empty or not a "
+         "mapping");
+  Scenario sc;
+  sc.config = loadConfig(root, "", base_dir);
+  Section top(root, "scenario");
+  for (const char* section : { "cable", "vehicle", "environment", "numerics", "winch", "seabed" })
+    top.has(section);
+  readShip(ParamReader(top.child("ship")), sc);
+  readCommands(top, sc);
+  readAutopilot(top, sc);
+  readInitialState(top, sc);
+  ParamReader simulation(top.child("simulation"));
+  simulation.read(simulationParams(), sc);
+  simulation.finish();
+  validateParams(simulationParams(), sc, "simulation");
+  top.finish();
+  return sc;
+}
+}  // namespace
 
 Scenario loadScenario(const YAML::Node& root, const std::string& base_dir)
 {
@@ -92,150 +264,6 @@ Scenario loadScenario(const YAML::Node& root, const std::string& base_dir)
   }
 }
 
-Scenario loadScenarioUnguarded(const YAML::Node& root, const std::string& base_dir)
-{
-  Scenario sc;
-  sc.config = loadConfig(root, "", base_dir);
-  Section top(root, "scenario");
-  for (const char* section : { "cable", "vehicle", "environment", "numerics", "winch", "seabed" })
-    top.has(section);
-
-  Section ship = top.child("ship");
-  ship.read("tow_point", sc.tow_point_S);
-  std::vector<double> start = ship.list("start_position");
-  if (!start.empty())
-  {
-    if (start.size() != 2)
-      fail(ship.path("start_position"), "must be [x, y] [m]");
-    sc.start_position = Eigen::Vector2d(start[0], start[1]);
-  }
-  ship.read("start_heading", sc.start_heading);
-  double speed = 2.0;
-  for (Section m : ship.items("manoeuvres"))
-  {
-    sc.manoeuvres.push_back(readManoeuvre(m, speed));
-    const Manoeuvre& last = sc.manoeuvres.back();
-    speed = last.type == Manoeuvre::Type::kSpeedChange ? last.to_speed : last.speed;
-  }
-  ship.finish();
-  for (int i = 0; i < 3; ++i)
-    requireInRange(ship.path("tow_point") + "[" + std::to_string(i) + "]", sc.tow_point_S[i], -1000.0, 1000.0, "[m]");
-  requireInRange(ship.path("start_heading"), sc.start_heading, -100.0, 100.0, "[rad]");
-  if (sc.manoeuvres.empty())
-    sc.manoeuvres.push_back(Manoeuvre());
-
-  for (Section c : top.items("commands"))
-  {
-    CommandEvent e;
-    c.read("t", e.t);
-    c.read("rudder", e.rudder);
-    c.read("elevator", e.elevator);
-    c.read("thrust", e.thrust);
-    c.read("payout_rate", e.payout_rate);
-    c.finish();
-    requireInRange(c.path("payout_rate"), e.payout_rate, -20.0, 20.0, "[m/s]");
-    if (e.payout_rate != 0.0 && !sc.config.winch.enabled)
-      fail(c.path("payout_rate"), "needs the winch: winch.enabled is false");
-    requireInRange(c.path("t"), e.t, 0.0, 1e7, "[s]");
-    requireInRange(c.path("rudder"), e.rudder, -kPi / 2, kPi / 2, "[rad]");
-    requireInRange(c.path("elevator"), e.elevator, -kPi / 2, kPi / 2, "[rad]");
-    requireInRange(c.path("thrust"), e.thrust, -1e6, 1e6, "[N]");
-    sc.commands.push_back(e);
-  }
-  std::stable_sort(sc.commands.begin(), sc.commands.end(),
-                   [](const CommandEvent& a, const CommandEvent& b) { return a.t < b.t; });
-
-  if (top.has("autopilot"))
-  {
-    Section a = top.child("autopilot");
-    AutopilotScenario& ap = sc.autopilot;
-    ap.enabled = true;
-    DepthAutopilotParams& p = ap.params;
-    a.read("rate", ap.rate);
-    a.read("kp", p.kp);
-    a.read("ki", p.ki);
-    a.read("kd", p.kd);
-    a.read("max_elevator", p.max_elevator);
-    a.read("track_keeping", p.track_keeping);
-    a.read("rudder_kp", p.rudder_kp);
-    a.read("rudder_kd", p.rudder_kd);
-    a.read("max_rudder", p.max_rudder);
-    a.read("track_spacing", p.track_spacing);
-    a.read("track_length", p.track_length);
-    a.read("thrust", p.thrust);
-    a.read("odom_timeout", p.odom_timeout);
-    a.read("max_depth", p.max_depth);
-    requireInRange(a.path("rate"), ap.rate, 0.1, 1000.0, "[Hz]");
-    p.validate(a.name() + ".");  // before the setpoints, which are checked against max_depth
-    for (Section item : a.items("setpoints"))
-    {
-      AutopilotSetpoint sp;
-      item.read("t", sp.t);
-      const bool has_depth = item.has("depth"), has_altitude = item.has("altitude");
-      if (has_depth == has_altitude)
-        fail(item.name(), "needs exactly one of depth [m] and altitude [m]");
-      sp.altitude = has_altitude;
-      item.read(has_altitude ? "altitude" : "depth", sp.value);
-      item.finish();
-      requireInRange(item.path("t"), sp.t, 0.0, 1e7, "[s]");
-      requireInRange(item.path(has_altitude ? "altitude" : "depth"), sp.value, 0.0, p.max_depth, "[m]");
-      if (sp.altitude && sc.config.seabed.type == SeabedParams::Type::kNone)
-        fail(item.path("altitude"), "needs a seabed: seabed.type is none");
-      ap.setpoints.push_back(sp);
-    }
-    a.finish();
-    std::stable_sort(ap.setpoints.begin(), ap.setpoints.end(),
-                     [](const AutopilotSetpoint& x, const AutopilotSetpoint& y) { return x.t < y.t; });
-    for (std::size_t i = 0; i < sc.commands.size(); ++i)
-    {
-      const CommandEvent& c = sc.commands[i];
-      if (c.rudder != 0.0 || c.elevator != 0.0 || c.thrust != 0.0)
-        fail("commands[" + std::to_string(i) + "]",
-             "rudder, elevator and thrust belong to the autopilot when there "
-             "is one (payout_rate alone is allowed)");
-    }
-  }
-
-  if (top.has("initial_state"))
-  {
-    Section init = top.child("initial_state");
-    const std::string type = init.text("type", "equilibrium");
-    if (type == "equilibrium")
-      sc.initial.type = InitialShape::Type::kEquilibrium;
-    else if (type == "line")
-      sc.initial.type = InitialShape::Type::kLine;
-    else if (type == "points")
-      sc.initial.type = InitialShape::Type::kPoints;
-    else
-      fail(init.path("type"), "= '" + type + "' must be equilibrium, line or points");
-    init.read("direction", sc.initial.line_direction_S);
-    const std::vector<double> p = init.list("points");
-    init.finish();
-    if (sc.initial.line_direction_S.norm() < 1e-9 || !sc.initial.line_direction_S.allFinite())
-      fail(init.path("direction"), "must be a finite, non-zero [x, y, z] in the ship frame");
-    const size_t joints = static_cast<size_t>(sc.config.cable.segments) + 1;
-    if (sc.initial.type == InitialShape::Type::kPoints)
-    {
-      if (p.size() != 3 * joints)
-        fail(init.path("points"), "must hold 3 (nu + 1) = " + std::to_string(3 * joints) +
-                                      " numbers (joints x_2 .. x_{nu+2}, world, x y z each); got " +
-                                      std::to_string(p.size()));
-      sc.initial.points = Eigen::Map<const Eigen::Matrix3Xd>(p.data(), 3, static_cast<Eigen::Index>(joints));
-    }
-  }
-
-  Section sim = top.child("simulation");
-  sim.read("duration", sc.duration);
-  sim.read("output_interval", sc.output_interval);
-  sim.read("shape_interval", sc.shape_interval);
-  sim.finish();
-  requireInRange(sim.path("duration"), sc.duration, 0.0, 1e7, "[s]", true);
-  requireInRange(sim.path("output_interval"), sc.output_interval, 1e-3, 1e5, "[s]");
-  requireInRange(sim.path("shape_interval"), sc.shape_interval, 1e-3, 1e7, "[s]");
-  top.finish();
-  return sc;
-}
-
 Scenario loadScenarioFile(const std::string& path)
 {
   YAML::Node root;
@@ -247,28 +275,28 @@ Scenario loadScenarioFile(const std::string& path)
   {
     throw std::invalid_argument(path + ": cannot read the scenario: " + e.what());
   }
-  return loadScenario(root, directoryOf(path));
+  try
+  {
+    return loadScenario(root, directoryOf(path));
+  }
+  catch (const std::invalid_argument& e)
+  {
+    if (!root || root.IsNull() || !root.IsMap())
+      throw std::invalid_argument(path + ": " + e.what());
+    throw;
+  }
 }
 
-YAML::Node toYaml(const Scenario& sc)
+namespace
 {
-  YAML::Node root = toYaml(sc.config);
-  YAML::Node ship = root["ship"];
-  ship["tow_point"] = std::vector<double>{ sc.tow_point_S.x(), sc.tow_point_S.y(), sc.tow_point_S.z() };
+void writeShip(YAML::Node ship, const Scenario& sc)
+{
+  detail::writeParams(ship, shipParams(), sc);
   ship["start_position"] = std::vector<double>{ sc.start_position.x(), sc.start_position.y() };
-  ship["start_heading"] = sc.start_heading;
   for (const Manoeuvre& m : sc.manoeuvres)
   {
     YAML::Node n;
-    n["type"] = typeName(m.type);
-    n["speed"] = m.speed;
-    n["duration"] = m.duration;
-    n["to_speed"] = m.to_speed;
-    n["radius"] = m.radius;
-    n["angle"] = m.angle;
-    n["direction"] = m.direction > 0 ? "port" : "starboard";
-    n["legs"] = m.legs;
-    n["acceptance"] = m.acceptance;
+    detail::writeParams(n, manoeuvreParams(), m);
     std::vector<double> points;
     for (const Eigen::Vector2d& p : m.points)
     {
@@ -278,56 +306,39 @@ YAML::Node toYaml(const Scenario& sc)
     n["points"] = points;
     ship["manoeuvres"].push_back(n);
   }
+}
+
+void writeAutopilot(YAML::Node a, const AutopilotLoop& ap)
+{
+  detail::writeParams(a, autopilotLoopParams(), ap);
+  a["setpoints"] = YAML::Node(YAML::NodeType::Sequence);
+  for (const AutopilotSetpoint& sp : ap.setpoints)
+  {
+    YAML::Node n;
+    n["t"] = sp.t;
+    n[sp.altitude ? "altitude" : "depth"] = sp.value;
+    a["setpoints"].push_back(n);
+  }
+}
+}  // namespace
+
+YAML::Node toYaml(const Scenario& sc)
+{
+  YAML::Node root = toYaml(sc.config);
+  writeShip(root["ship"], sc);
   for (const CommandEvent& e : sc.commands)
   {
     YAML::Node n;
-    n["t"] = e.t;
-    n["rudder"] = e.rudder;
-    n["elevator"] = e.elevator;
-    n["thrust"] = e.thrust;
-    n["payout_rate"] = e.payout_rate;
+    detail::writeParams(n, commandParams(), e);
     root["commands"].push_back(n);
   }
   if (sc.autopilot.enabled)
-  {
-    const AutopilotScenario& ap = sc.autopilot;
-    const DepthAutopilotParams& p = ap.params;
-    YAML::Node a = root["autopilot"];
-    a["rate"] = ap.rate;
-    a["kp"] = p.kp;
-    a["ki"] = p.ki;
-    a["kd"] = p.kd;
-    a["max_elevator"] = p.max_elevator;
-    a["track_keeping"] = p.track_keeping;
-    a["rudder_kp"] = p.rudder_kp;
-    a["rudder_kd"] = p.rudder_kd;
-    a["max_rudder"] = p.max_rudder;
-    a["track_spacing"] = p.track_spacing;
-    a["track_length"] = p.track_length;
-    a["thrust"] = p.thrust;
-    a["odom_timeout"] = p.odom_timeout;
-    a["max_depth"] = p.max_depth;
-    a["setpoints"] = YAML::Node(YAML::NodeType::Sequence);
-    for (const AutopilotSetpoint& sp : ap.setpoints)
-    {
-      YAML::Node n;
-      n["t"] = sp.t;
-      n[sp.altitude ? "altitude" : "depth"] = sp.value;
-      a["setpoints"].push_back(n);
-    }
-  }
+    writeAutopilot(root["autopilot"], sc.autopilot);
   YAML::Node init = root["initial_state"];
-  const InitialShape& initial = sc.initial;
-  init["type"] = initial.type == InitialShape::Type::kEquilibrium ? "equilibrium"
-                 : initial.type == InitialShape::Type::kLine      ? "line"
-                                                                  : "points";
-  const Eigen::Vector3d& d = initial.line_direction_S;
-  init["direction"] = std::vector<double>{ d.x(), d.y(), d.z() };
-  if (initial.type == InitialShape::Type::kPoints)
-    init["points"] = std::vector<double>(initial.points.data(), initial.points.data() + initial.points.size());
-  root["simulation"]["duration"] = sc.duration;
-  root["simulation"]["output_interval"] = sc.output_interval;
-  root["simulation"]["shape_interval"] = sc.shape_interval;
+  detail::writeParams(init, initialStateParams(), sc.initial);
+  if (sc.initial.type == InitialShape::Type::kPoints)
+    init["points"] = std::vector<double>(sc.initial.points.data(), sc.initial.points.data() + sc.initial.points.size());
+  detail::writeParams(root["simulation"], simulationParams(), sc);
   return root;
 }
 

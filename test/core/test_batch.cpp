@@ -353,6 +353,8 @@ TEST(Batch, BadScenariosAreRefusedNamingTheKey)
     EXPECT_EQ(status, 2) << yaml;
     EXPECT_NE(log.find(needle), std::string::npos) << log;
   };
+  refuse("", "scenario: must be a mapping");  // an empty file used to run a default scenario
+  refuse("[1, 2, 3]", "scenario: must be a mapping");
   refuse("ship: {manoeuvres: [{type: loop}]}", "ship.manoeuvres[0].type: = 'loop' must be");
   refuse("ship: {manoeuvres: [{type: turn, radius: 1}]}", "ship.manoeuvres[0].radius = 1 is out of range");
   refuse("simulation: {duration: -5}", "simulation.duration = -5");

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "tow_sim/core/param_table.h"
+
 namespace tow_sim
 {
 // How the tangential (skin-friction) drag of a cable element depends on the flow (physics.md §4).
@@ -119,9 +121,5 @@ void validate(const EndElementParams& end, const std::string& prefix = "end_elem
 void validate(const NumericsParams& numerics, const std::string& prefix = "numerics");
 // Also checks the winch against the cable (its length within the limits, the band against L / nu).
 void validate(const WinchParams& winch, const CableParams& cable, const std::string& prefix = "winch");
-
-// Throws std::invalid_argument unless lo <= value <= hi (or lo < value where lo_open) and finite.
-void requireInRange(const std::string& name, double value, double lo, double hi, const char* unit,
-                    bool lo_open = false);
 
 }  // namespace tow_sim

@@ -14,8 +14,12 @@
 #include <Eigen/Geometry>
 #include <string>
 
+#include <ros/node_handle.h>
+#include <stdexcept>
+
 #include "tow_sim/CableState.h"
 #include "tow_sim/FinLoads.h"
+#include "tow_sim/config/param_yaml.h"
 #include "tow_sim/core/tow_run.h"
 
 namespace tow_sim
@@ -24,6 +28,30 @@ namespace ros_conv
 {
 // A parameter-server subtree as YAML (structs -> maps, arrays -> sequences, scalars -> scalars).
 YAML::Node toYaml(XmlRpc::XmlRpcValue& value);
+// The node's private namespace as YAML (null when it holds nothing).
+YAML::Node privateParameters(const ros::NodeHandle& pnh);
+// The loaders name keys "section.key"; on the parameter server they are "section/key".
+std::invalid_argument withSlashes(const std::invalid_argument& e);
+
+// A table's keys from the node's private namespace (unknown keys there are left alone: they may belong to
+// other readers), then validate(params, "<namespace>/"); errors name the full parameter path.
+template <class S>
+S readPrivateParams(const ros::NodeHandle& pnh, const ParamTable<S>& table,
+                    void (*validate)(const S&, const std::string&))
+{
+  S params;
+  try
+  {
+    detail::ParamReader reader(detail::Section(privateParameters(pnh), pnh.getNamespace()));
+    reader.read(table, params);
+    validate(params, pnh.getNamespace() + "/");
+  }
+  catch (const std::invalid_argument& e)
+  {
+    throw withSlashes(e);
+  }
+  return params;
+}
 
 geometry_msgs::Point toPoint(const Eigen::Vector3d& v);
 geometry_msgs::Vector3 toVector3(const Eigen::Vector3d& v);

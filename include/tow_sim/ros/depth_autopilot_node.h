@@ -9,6 +9,7 @@
 #include <string>
 
 #include "tow_sim/CableState.h"
+#include "tow_sim/config/node_params.h"
 #include "tow_sim/core/depth_autopilot.h"
 
 namespace tow_sim
@@ -30,6 +31,7 @@ private:
   bool frameOk(const nav_msgs::Odometry& msg, const char* topic);
 
   ros::NodeHandle nh_, pnh_;
+  AutopilotNodeParams node_params_;
   DepthAutopilotParams params_;
   double rate_ = 10.0;                // [Hz] fins/command
   std::string world_frame_ = "odom";  // frame of both odometries

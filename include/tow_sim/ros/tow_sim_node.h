@@ -22,35 +22,13 @@
 #include "tow_sim/CurrentProfile.h"
 #include "tow_sim/FinCommand.h"
 #include "tow_sim/config/config.h"
+#include "tow_sim/config/node_params.h"
 #include "tow_sim/core/odometry_check.h"
 #include "tow_sim/core/ship_track.h"
 #include "tow_sim/core/tow_run.h"
 
 namespace tow_sim
 {
-// Node-level parameters (besides the core's cable/vehicle/environment/numerics), with their ranges.
-struct NodeParams
-{
-  std::string world_frame = "odom";                                // frame of ship/odom, current and every output
-  std::string vehicle_frame = "tow_vehicle";                       // tf child frame of the vehicle CG
-  Eigen::Vector3d tow_point_S = Eigen::Vector3d(-20.0, 0.0, 0.0);  // [m] tow point in the ship frame (FLU)
-  double physics_rate = 50.0;                                      // [Hz] integration ticks, [1, 1000]
-  double publish_rate = 10.0;                                      // [Hz] state, markers, odometry, tf, [0.1, 100]
-  double odom_delay = 0.2;                    // [s] the simulation runs this far behind the clock, [0, 10]
-  double max_extrapolation = 1.0;             // [s] past the newest odometry, then hold, [0, 60]
-  double max_ship_speed = 25.0;               // [m/s] odometry implying a faster jump is rejected, (0, 1000]
-  double max_odom_age = 10.0;                 // [s] odometry stamped earlier than now - this is rejected, (0, 1e6]
-  std::string initial_shape = "equilibrium";  // equilibrium: steady tow at the ship's velocity (falls back to
-                                              // line if none is found); line: straight astern at
-                                              // initial_angle; hanging: straight down
-  double initial_angle = 0.5;                 // [rad] below the horizontal for "line", [0, pi/2]
-  double tension_color_max = 5000.0;          // [N] red end of the cable colour scale, (0, 1e9]
-  double force_arrow_scale = 0.01;            // [m/N] length of the tow-force arrow per newton, (0, 10]
-  double cable_marker_width = 0.5;            // [m] drawn width of the cable line, (0, 100]
-  double vehicle_diameter = 0.3;              // [m] drawn hull diameter, (0, 100]
-  bool print_status = false;                  // print a status line each second (headless demo)
-};
-
 class TowSimNode
 {
 public:

@@ -1,0 +1,46 @@
+// The ROS nodes' own parameters (besides the configuration's sections), with their tables (param_table.h):
+// tow_sim_node's and depth_autopilot_node's. ROS-free, so they are validated, documented and tested without
+// roscore; the nodes read them from their private namespace through the same YAML reader.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+
+#include "tow_sim/core/depth_autopilot.h"
+#include "tow_sim/core/param_table.h"
+
+namespace tow_sim
+{
+struct NodeParams
+{
+  std::string world_frame = "odom";                                // frame of ship/odom, current and every output
+  std::string vehicle_frame = "tow_vehicle";                       // tf child frame of the vehicle CG
+  Eigen::Vector3d tow_point_S = Eigen::Vector3d(-20.0, 0.0, 0.0);  // [m] tow point in the ship frame (FLU)
+  double physics_rate = 50.0;                                      // [Hz] integration ticks
+  double publish_rate = 10.0;                                      // [Hz] state, markers, odometry, tf
+  double odom_delay = 0.2;                                         // [s] the simulation runs this far behind the clock
+  double max_extrapolation = 1.0;                                  // [s] past the newest odometry, then hold
+  double max_ship_speed = 25.0;                                    // [m/s] odometry implying a faster jump is rejected
+  double max_odom_age = 10.0;                 // [s] odometry stamped earlier than now - this is rejected
+  std::string initial_shape = "equilibrium";  // equilibrium | line | hanging
+  double initial_angle = 0.5;                 // [rad] below the horizontal for "line" (and the fallback)
+  double tension_color_max = 5000.0;          // [N] red end of the cable colour scale
+  double force_arrow_scale = 0.01;            // [m/N] length of the tow-force arrow per newton
+  double cable_marker_width = 0.5;            // [m] drawn width of the cable line
+  double vehicle_diameter = 0.3;              // [m] drawn hull diameter
+  bool print_status = false;                  // print a status line each second (headless demo)
+};
+const ParamTable<NodeParams>& nodeParams();
+// The table's ranges and the frames (non-empty, different); names "<prefix><key>".
+void validate(const NodeParams& params, const std::string& prefix);
+
+struct AutopilotNodeParams
+{
+  DepthAutopilotParams controller;
+  double rate = 10.0;                // [Hz] fins/command
+  std::string world_frame = "odom";  // frame of both odometries
+};
+const ParamTable<AutopilotNodeParams>& autopilotNodeParams();
+void validate(const AutopilotNodeParams& params, const std::string& prefix);
+
+}  // namespace tow_sim

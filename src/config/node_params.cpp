@@ -1,0 +1,73 @@
+#include "tow_sim/config/node_params.h"
+
+#include <stdexcept>
+
+#include "tow_sim/core/param_tables.h"
+
+namespace tow_sim
+{
+namespace
+{
+constexpr double kHalfPi = 1.57079632679489661923;
+constexpr bool kOpen = true, kClosed = false;
+}  // namespace
+
+const ParamTable<NodeParams>& nodeParams()
+{
+  using N = NodeParams;
+  static const ParamTable<N> table =
+      ParamTable<N>()
+          .text("world_frame", &N::world_frame, "non-empty", "frame of ship/odom, current and every output")
+          .text("vehicle_frame", &N::vehicle_frame, "≠ world_frame", "tf child frame of the vehicle CG")
+          .vector3("tow_point", &N::tow_point_S, "m", -1000.0, 1000.0, "tow point in the ship frame (FLU)")
+          .number("physics_rate", &N::physics_rate, "Hz", 1.0, 1000.0, kClosed, "integration ticks")
+          .number("publish_rate", &N::publish_rate, "Hz", 0.1, 100.0, kClosed,
+                  "state, markers, odometry, fin loads, tf")
+          .number("odom_delay", &N::odom_delay, "s", 0.0, 10.0, kClosed,
+                  "the simulation runs this far behind the clock, to interpolate between odometry messages")
+          .number("max_extrapolation", &N::max_extrapolation, "s", 0.0, 60.0, kClosed,
+                  "past the newest odometry; then the simulation holds")
+          .number("max_ship_speed", &N::max_ship_speed, "m/s", 0.0, 1000.0, kOpen,
+                  "odometry faster than this, or jumping farther, is rejected")
+          .number("max_odom_age", &N::max_odom_age, "s", 0.0, 1e6, kOpen,
+                  "odometry stamped more than this before the clock is rejected (a publisher on another clock)")
+          .choice("initial_shape", &N::initial_shape,
+                  { { "equilibrium", "equilibrium" }, { "line", "line" }, { "hanging", "hanging" } },
+                  "the steady tow at the ship's velocity (a line if none is found), straight astern at "
+                  "initial_angle, or straight down")
+          .number("initial_angle", &N::initial_angle, "rad", 0.0, kHalfPi, kClosed, "below the horizontal, for line")
+          .number("tension_color_max", &N::tension_color_max, "N", 0.0, 1e9, kOpen, "red end of the colour scale")
+          .number("force_arrow_scale", &N::force_arrow_scale, "m/N", 0.0, 10.0, kOpen, "tow-force arrow per newton")
+          .number("cable_marker_width", &N::cable_marker_width, "m", 0.0, 100.0, kOpen, "drawn cable width")
+          .number("vehicle_diameter", &N::vehicle_diameter, "m", 0.0, 100.0, kOpen, "drawn hull diameter")
+          .boolean("print_status", &N::print_status, "a status line each second (the launch file sets it)");
+  return table;
+}
+
+void validate(const NodeParams& p, const std::string& prefix)
+{
+  validateParams(nodeParams(), p, prefix);
+  if (p.world_frame.empty() || p.vehicle_frame.empty() || p.world_frame == p.vehicle_frame)
+    throw std::invalid_argument(prefix +
+                                "vehicle_frame: world_frame and vehicle_frame must be non-empty and "
+                                "different");
+}
+
+const ParamTable<AutopilotNodeParams>& autopilotNodeParams()
+{
+  using A = AutopilotNodeParams;
+  static const ParamTable<A> table = ParamTable<A>()
+                                         .number("rate", &A::rate, "Hz", 0.1, 1000.0, kClosed, "fins/command")
+                                         .nest("", &A::controller, autopilotParams())
+                                         .text("world_frame", &A::world_frame, "non-empty", "frame of both odometries");
+  return table;
+}
+
+void validate(const AutopilotNodeParams& p, const std::string& prefix)
+{
+  validateParams(autopilotNodeParams(), p, prefix);
+  if (p.world_frame.empty())
+    throw std::invalid_argument(prefix + "world_frame: must be a non-empty string");
+}
+
+}  // namespace tow_sim
