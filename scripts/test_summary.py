@@ -123,8 +123,8 @@ def main(argv):
         total.problems += tally.problems
     if args.stages:
         tally = count_stages(args.stages)
-        lines.append(f"  stages (build, run_tests, sanitizers, fuzzing exit status): {tally.passed} passed, "
-                     f"{tally.failed} failed")
+        lines.append(f"  stages (size limits, format, build, run_tests, sanitizers, fuzzing: exit status): "
+                     f"{tally.passed} passed, {tally.failed} failed")
         total.passed += tally.passed
         total.failed += tally.failed
         total.problems += tally.problems
