@@ -38,7 +38,9 @@ void ScriptedShip::next()
 {
   ++index_;
   started_ = time_;
-  heading0_ = heading_;
+  // The next manoeuvre starts from the course steered, not the heading reached: a turn hands over while
+  // the heading still closes on its goal, and a second turn or a zigzag must count from that goal.
+  heading0_ = course_;
   speed0_ = u_;
   leg_ = 0;
 }

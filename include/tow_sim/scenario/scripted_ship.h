@@ -29,7 +29,8 @@ public:
   ScriptedShip(std::vector<Manoeuvre> manoeuvres, double x, double y, double heading);
 
   // One step of dt [s]. While `teleop` is given, its speed [m/s] and yaw rate [rad/s] are the targets and
-  // the script waits; when it stops, the script goes on from the heading the ship has then.
+  // the script waits; when it stops, the script goes on from the heading the ship has then: the manoeuvre
+  // under way starts again there (a turn turns its whole angle from that heading, a zigzag swings about it).
   struct Teleop
   {
     double speed = 0.0, yaw_rate = 0.0;
