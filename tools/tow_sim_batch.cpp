@@ -98,6 +98,8 @@ int main(int argc, char** argv)
   catch (const std::exception& e)
   {
     progress.finish();
+    if (!result.start_warning.empty())  // the fallback start is the likeliest cause: say so first
+      std::fprintf(stderr, "tow_sim_batch: %s\n", result.start_warning.c_str());
     std::fprintf(stderr,
                  "tow_sim_batch: the run stopped: %s\ntow_sim_batch: the CSV files in %s are INCOMPLETE: they hold "
                  "the run up to t = %.3f s of %.3f s\n",

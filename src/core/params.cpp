@@ -105,26 +105,15 @@ void validate(const NumericsParams& n, const std::string& p)
 
 void validate(const WinchParams& w, const CableParams& c, const std::string& p)
 {
-  requireInRange(p + ".segment_min_fraction", w.segment_min_fraction, 0.1, 1.0, "[-]");
-  if (w.segment_min_fraction >= 1.0)
-    requireInRange(p + ".segment_min_fraction", w.segment_min_fraction, 0.1, 0.999999, "[-] (below 1)");
-  requireInRange(p + ".segment_max_fraction", w.segment_max_fraction, w.segment_min_fraction + 1.0, 10.0,
-                 "[-] (at least segment_min_fraction + 1, so a split leaves both parts in the band)");
-  // The bound that depends on the cable only matters when the winch runs.
+  validateParams(winchParams(), w, p);  // the table's ranges; then those that depend on the cable
+  // They only matter when the winch runs.
   const double d = c.segmentLength();
   if (w.enabled)
     requireInRange(p + ".min_length", w.min_length, w.segment_min_fraction * d, 1e5,
                    "[m] (at least segment_min_fraction * cable.length / cable.segments)");
-  else
-    requireInRange(p + ".min_length", w.min_length, 0.0, 1e5, "[m]", true);
   if (w.enabled)  // the winch adds segments of the nominal length: at most cable.segments' limit of them
     requireInRange(p + ".max_length", w.max_length, w.min_length, std::min(1e5, 1e5 * d),
                    "[m] (at least min_length, at most 100000 segments of cable.length / cable.segments)");
-  else
-    requireInRange(p + ".max_length", w.max_length, w.min_length, 1e5, "[m] (at least min_length)");
-  requireInRange(p + ".max_rate", w.max_rate, 0.0, 20.0, "[m/s]", true);
-  requireInRange(p + ".max_acceleration", w.max_acceleration, 0.0, 100.0, "[m/s^2]", true);
-  requireInRange(p + ".response_time", w.response_time, 0.01, 100.0, "[s]");
   const std::string root = p.size() >= 5 && p.compare(p.size() - 5, 5, "winch") == 0 ? p.substr(0, p.size() - 5) : "";
   if (w.enabled)
     requireInRange(root + "cable.length", c.length, w.min_length, w.max_length,

@@ -122,7 +122,12 @@ Simulator::~Simulator() = default;
 
 bool Simulator::command(double rudder, double elevator, double thrust)
 {
-  return model_->endBody().command(data_.actuators, t_, rudder, elevator, thrust);
+  return commandAt(t_, rudder, elevator, thrust);
+}
+
+bool Simulator::commandAt(double t, double rudder, double elevator, double thrust)
+{
+  return model_->endBody().command(data_.actuators, t, rudder, elevator, thrust);
 }
 
 void Simulator::resetActuators(double t)
@@ -267,9 +272,11 @@ void Simulator::mergeFirstSegment()
 void Simulator::restoreLayout(int segments, double cable_out)
 {
   const double first = cable_out - (segments - 1) * data_.geometry.nominal_length;
-  if (segments < 1 || !std::isfinite(cable_out) || !(first > 0.0) ||
+  const bool fixed_length_differs =
+      !winch_.enabled && std::abs(cable_out - model_->cableLength()) > 1e-9 * model_->cableLength();
+  if (segments < 1 || segments > 100000 || !std::isfinite(cable_out) || !(first > 0.0) ||
       (winch_.enabled && (cable_out < winch_.min_length || cable_out > winch_.max_length)) ||
-      (!winch_.enabled && segments != model_->segments()))
+      (!winch_.enabled && (segments != model_->segments() || fixed_length_differs)))
     throw std::invalid_argument("restoreLayout: " + std::to_string(segments) + " segments and " +
                                 std::to_string(cable_out) + " m of cable out are not a layout of this cable");
   data_.geometry.segments = segments;

@@ -51,7 +51,7 @@ void TowRun::setAutopilot(const AutopilotLoop& loop)
                    [](const AutopilotSetpoint& a, const AutopilotSetpoint& b) { return a.t < b.t; });
   autopilot_ = loop.enabled ? std::make_unique<DepthAutopilot>(loop.params) : nullptr;
   next_setpoint_ = 0;
-  ticks_ = 0;
+  ticks_ = started_ ? firstTickFrom(time()) : 0;
 }
 
 ChainState TowRun::initialState(double t, std::string* warning) const
@@ -96,19 +96,31 @@ std::string TowRun::start(double t)
 {
   if (ship_->empty())
     throw std::invalid_argument("TowRun::start: no ship sample yet");
+  if (!std::isfinite(t))
+    throw std::invalid_argument("TowRun::start: the start time must be finite");
+  // The schedule as it stands at t, whatever ran before (a restart replays it): the last command due by t
+  // sets the fins and thrust (from t, the servos from centre) and the winch; later ones stay scheduled.
+  next_command_ = 0;
+  while (next_command_ < commands_.size() && commands_[next_command_].t <= t)
+    ++next_command_;
+  const CommandEvent* due = next_command_ > 0 ? &commands_[next_command_ - 1] : nullptr;
   sim_.resetActuators(t);
-  // Fins and thrust due by t act from the start (the thrust shapes the equilibrium); the winch starts from
-  // rest with the reset and takes its command after it.
-  size_t due = next_command_;
-  for (; due < commands_.size() && commands_[due].t <= t; ++due)
-    if (!autopilot_)
-      sim_.command(commands_[due].rudder, commands_[due].elevator, commands_[due].thrust);
+  if (due && !autopilot_)  // the thrust shapes the equilibrium
+    sim_.commandAt(t, due->rudder, due->elevator, due->thrust);
+  // The autopilot starts afresh: its setpoints due by t given, its ticks from t on.
+  if (autopilot_loop_.enabled)
+  {
+    autopilot_ = std::make_unique<DepthAutopilot>(autopilot_loop_.params);
+    const std::vector<AutopilotSetpoint>& setpoints = autopilot_loop_.setpoints;
+    for (next_setpoint_ = 0; next_setpoint_ < setpoints.size() && setpoints[next_setpoint_].t <= t; ++next_setpoint_)
+      applySetpoint(setpoints[next_setpoint_]);
+    ticks_ = firstTickFrom(t);
+  }
   std::string warning;
   const ChainState state = initialState(t, &warning);
-  sim_.reset(t, state);
-  for (; next_command_ < due; ++next_command_)
-    if (config_.winch.enabled)
-      sim_.setWinchCommand(commands_[next_command_].payout_rate);
+  sim_.reset(t, state);  // the winch from rest, its command cleared
+  if (due && config_.winch.enabled)
+    sim_.setWinchCommand(due->payout_rate);
   attitude_.reset();
   max_length_error_ = 0.0;
   started_ = true;
@@ -142,6 +154,9 @@ StepReport TowRun::advanceTo(double t)
 {
   if (!started_)
     throw std::logic_error("TowRun::advanceTo before start()");
+  if (!std::isfinite(t) || t < time())
+    throw std::invalid_argument("TowRun::advanceTo: the target time " + std::to_string(t) +
+                                " s must be finite and not before the run's time " + std::to_string(time()) + " s");
   // Everything due up to t in time order (at equal times: commands, then setpoints, then autopilot ticks),
   // each after the simulation has reached its time; then the simulation to t.
   const double never = std::numeric_limits<double>::infinity();
@@ -163,7 +178,7 @@ StepReport TowRun::advanceTo(double t)
     const double t_next = std::min({ t_command, t_setpoint, t_tick });
     if (t_next > t)
       break;
-    integrate(t_next);
+    integrate(std::max(t_next, time()));  // an event scheduled in the past acts now
     if (t_next == t_command)
     {
       const CommandEvent& c = commands_[next_command_++];
@@ -173,13 +188,7 @@ StepReport TowRun::advanceTo(double t)
         sim_.setWinchCommand(c.payout_rate);
     }
     else if (t_next == t_setpoint)
-    {
-      const AutopilotSetpoint& sp = setpoints[next_setpoint_++];
-      if (sp.altitude)
-        autopilot_->setAltitudeSetpoint(sp.value);
-      else
-        autopilot_->setSetpoint(sp.value);
-    }
+      applySetpoint(setpoints[next_setpoint_++]);
     else
       autopilotTick(t_next);
   }
@@ -187,8 +196,23 @@ StepReport TowRun::advanceTo(double t)
   return total;
 }
 
+long TowRun::firstTickFrom(double t) const
+{
+  return static_cast<long>(std::ceil(t * autopilot_loop_.rate - 1e-9));
+}
+
+void TowRun::applySetpoint(const AutopilotSetpoint& sp)
+{
+  if (sp.altitude)
+    autopilot_->setAltitudeSetpoint(sp.value);
+  else
+    autopilot_->setSetpoint(sp.value);
+}
+
 TowSnapshot TowRun::snapshot()
 {
+  if (!started_)
+    throw std::logic_error("TowRun::snapshot before start()");
   TowSnapshot s;
   s.t = sim_.time();
   s.ship = ship_->pose(s.t);

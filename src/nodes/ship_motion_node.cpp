@@ -14,6 +14,8 @@
 #include <cmath>
 #include <memory>
 #include <stdexcept>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "tow_sim/scenario/scripted_ship.h"
@@ -30,20 +32,30 @@ struct Presets
   std::vector<Eigen::Vector2d> waypoints;
 };
 
+// A private parameter of type T if set: a value of another type is an error naming the parameter (not a
+// silent fall back to the default, as ros::NodeHandle::param does).
+template <class T>
+void readTyped(const ros::NodeHandle& pnh, const std::string& key, T& value, const char* type)
+{
+  if (pnh.hasParam(key) && !pnh.getParam(key, value))
+    throw std::invalid_argument(pnh.resolveName(key) + " must be " + type);
+}
+
 Presets readPresets(const ros::NodeHandle& pnh)
 {
   Presets p;
-  pnh.param<std::string>("manoeuvre", p.manoeuvre, p.manoeuvre);
-  pnh.param("speed", p.speed, p.speed);
-  pnh.param("speed_2", p.speed_2, p.speed_2);
-  pnh.param("change_time", p.change_time, p.change_time);
-  pnh.param("change_duration", p.change_duration, p.change_duration);
-  pnh.param("turn_radius", p.turn_radius, p.turn_radius);
-  pnh.param("turn_start", p.turn_start, p.turn_start);
-  pnh.param("zigzag_period", p.zigzag_period, p.zigzag_period);
-  pnh.param("waypoint_radius", p.waypoint_radius, p.waypoint_radius);
+  readTyped(pnh, "manoeuvre", p.manoeuvre, "a string");
+  for (auto [key, value] : { std::pair<const char*, double*>{ "speed", &p.speed },
+                             { "speed_2", &p.speed_2 },
+                             { "change_time", &p.change_time },
+                             { "change_duration", &p.change_duration },
+                             { "turn_radius", &p.turn_radius },
+                             { "turn_start", &p.turn_start },
+                             { "zigzag_period", &p.zigzag_period },
+                             { "waypoint_radius", &p.waypoint_radius } })
+    readTyped(pnh, key, *value, "a number");
   std::vector<double> points;
-  pnh.param("waypoints", points, points);
+  readTyped(pnh, "waypoints", points, "a list of numbers [x1, y1, x2, y2, ...]");
   if (points.size() % 2 != 0)
     throw std::invalid_argument(pnh.resolveName("waypoints") + " must hold x, y pairs [m]: an even count of numbers");
   for (size_t i = 0; i + 1 < points.size(); i += 2)
@@ -86,7 +98,7 @@ std::vector<Manoeuvre> manoeuvres(const Presets& p)
   if (p.manoeuvre == "turn")
   {
     list.push_back(make(Manoeuvre::Type::kTurn, 0.0));
-    list.back().angle = 100.0;  // [rad] about 16 turns
+    list.back().angle = 1e9;  // [rad] turning for good (1.6e8 turns)
   }
   else if (p.manoeuvre == "zigzag")
   {

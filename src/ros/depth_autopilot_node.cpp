@@ -23,10 +23,7 @@ DepthAutopilotNode::DepthAutopilotNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     : nh_(nh),
       pnh_(pnh),
       node_params_(ros_conv::readPrivateParams<AutopilotNodeParams>(pnh, autopilotNodeParams(), validate)),
-      params_(node_params_.controller),
-      rate_(node_params_.rate),
-      world_frame_(node_params_.world_frame),
-      autopilot_(params_)
+      autopilot_(node_params_.controller)
 {
   vehicle_sub_ = nh_.subscribe("vehicle/odom", 10, &DepthAutopilotNode::onVehicleOdometry, this);
   ship_sub_ = nh_.subscribe("ship/odom", 50, &DepthAutopilotNode::onShipOdometry, this);
@@ -35,19 +32,20 @@ DepthAutopilotNode::DepthAutopilotNode(ros::NodeHandle nh, ros::NodeHandle pnh)
       nh_.subscribe("autopilot/altitude_setpoint", 10, &DepthAutopilotNode::onAltitudeSetpoint, this);
   state_sub_ = nh_.subscribe("cable/state", 10, &DepthAutopilotNode::onCableState, this);
   fin_pub_ = nh_.advertise<tow_sim::FinCommand>("fins/command", 10);
-  timer_ = nh_.createTimer(ros::Duration(1.0 / rate_), &DepthAutopilotNode::tick, this);
+  timer_ = nh_.createTimer(ros::Duration(1.0 / node_params_.rate), &DepthAutopilotNode::tick, this);
   ROS_INFO(
       "depth_autopilot: kp %.3g rad/m, ki %.3g rad/(m s), kd %.3g rad/(m/s), elevator within +-%.3f rad; "
       "track keeping %s; fins/command at %.1f Hz",
-      params_.kp, params_.ki, params_.kd, params_.max_elevator, params_.track_keeping ? "on" : "off", rate_);
+      node_params_.controller.kp, node_params_.controller.ki, node_params_.controller.kd,
+      node_params_.controller.max_elevator, node_params_.controller.track_keeping ? "on" : "off", node_params_.rate);
 }
 
 bool DepthAutopilotNode::frameOk(const nav_msgs::Odometry& msg, const char* topic)
 {
-  if (msg.header.frame_id == world_frame_)
+  if (msg.header.frame_id == node_params_.world_frame)
     return true;
   ROS_WARN_THROTTLE(2.0, "depth_autopilot: rejected %s: header.frame_id = '%s', expected ~world_frame = '%s'", topic,
-                    msg.header.frame_id.c_str(), world_frame_.c_str());
+                    msg.header.frame_id.c_str(), node_params_.world_frame.c_str());
   return false;
 }
 
@@ -126,7 +124,8 @@ void DepthAutopilotNode::onSetpoint(const std_msgs::Float64::ConstPtr& msg)
     ROS_WARN_THROTTLE(2.0,
                       "depth_autopilot: rejected %s: data = %g is out of range: must be a finite number in "
                       "[0, %g] [m] (depth, positive down); keeping %.2f m",
-                      setpoint_sub_.getTopic().c_str(), msg->data, params_.max_depth, autopilot_.setpoint());
+                      setpoint_sub_.getTopic().c_str(), msg->data, node_params_.controller.max_depth,
+                      autopilot_.setpoint());
   }
 }
 
@@ -143,7 +142,7 @@ void DepthAutopilotNode::onAltitudeSetpoint(const std_msgs::Float64::ConstPtr& m
     ROS_WARN_THROTTLE(2.0,
                       "depth_autopilot: rejected %s: data = %g is out of range: must be a finite number in "
                       "[0, %g] [m] (above the seabed)",
-                      altitude_setpoint_sub_.getTopic().c_str(), msg->data, params_.max_depth);
+                      altitude_setpoint_sub_.getTopic().c_str(), msg->data, node_params_.controller.max_depth);
   }
 }
 
@@ -166,7 +165,7 @@ void DepthAutopilotNode::tick(const ros::TimerEvent&)
       ROS_INFO_THROTTLE(10.0, "depth_autopilot: waiting for %s; fins centred", vehicle_sub_.getTopic().c_str());
     else if (c.status == AutopilotCommand::Status::kStale)
       ROS_WARN_THROTTLE(2.0, "depth_autopilot: nothing new on %s for ~odom_timeout = %.2f s: fins centred, no thrust",
-                        vehicle_sub_.getTopic().c_str(), params_.odom_timeout);
+                        vehicle_sub_.getTopic().c_str(), node_params_.controller.odom_timeout);
     tow_sim::FinCommand cmd;
     cmd.header.stamp = ros::Time::now();
     cmd.rudder = c.rudder;

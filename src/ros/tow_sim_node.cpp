@@ -9,7 +9,6 @@
 
 #include "tow_sim/CableState.h"
 #include "tow_sim/FinLoads.h"
-#include "tow_sim/core/equilibrium.h"
 #include "tow_sim/core/odometry_check.h"
 #include "tow_sim/ros/conversions.h"
 #include "tow_sim/ros/markers.h"
@@ -129,6 +128,11 @@ void TowSimNode::printStatus()
     ROS_INFO("waiting for ship odometry on %s", odom_sub_.getTopic().c_str());
     return;
   }
+  if (!have_last_)
+  {
+    ROS_INFO("t %7.1f s | no output of this run published yet (or the last was not finite)", run_.time());
+    return;
+  }
   ROS_INFO(
       "t %7.1f s | ship %4.2f m/s | vehicle depth %6.1f m, diversion %6.2f m | tension ship %7.0f N, "
       "vehicle %6.0f N",
@@ -142,6 +146,7 @@ void TowSimNode::start(double t)
   if (!warning.empty())
     ROS_WARN_THROTTLE(5.0, "tow_sim: %s", warning.c_str());
   started_ = true;
+  have_last_ = false;  // the status line waits for this run's first output
 }
 
 void TowSimNode::onOdometry(const nav_msgs::Odometry::ConstPtr& msg)
@@ -392,10 +397,12 @@ void TowSimNode::publishTick(const ros::TimerEvent&)
   catch (const std::runtime_error& e)
   {
     ROS_ERROR_THROTTLE(2.0, "tow_sim: %s; not published", e.what());
+    have_last_ = false;
     return;
   }
   last_ = snapshot;
-  max_length_error_ = snapshot.max_length_error;
+  have_last_ = true;
+  max_length_error_ = std::max(max_length_error_, snapshot.max_length_error);
   std_msgs::Header header;
   header.stamp = absolute(snapshot.t);
   header.frame_id = params_.world_frame;
@@ -438,7 +445,9 @@ void TowSimNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
   status.add("rejected steps", rejected_steps_);
   status.add("rejected messages", rejected_messages_);
   status.add("restarts after divergence", restarts_);
+  // Over every output since the last report (the diagnostics run at 1 Hz, the outputs faster).
   status.add("max relative length error", max_length_error_);
+  max_length_error_ = 0.0;
 }
 
 }  // namespace tow_sim

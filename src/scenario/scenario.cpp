@@ -217,6 +217,7 @@ void readInitialState(Section& top, Scenario& sc)
   Section& s = r.at("");
   const std::vector<double> p = s.list("points");
   r.finish();
+  validateParams(initialStateParams(), init, s.name());
   if (init.line_direction_S.norm() < 1e-9 || !init.line_direction_S.allFinite())
     fail(s.path("direction"), "must be a finite, non-zero [x, y, z] in the ship frame");
   const size_t joints = static_cast<size_t>(sc.config.cable.segments) + 1;
@@ -246,7 +247,7 @@ Scenario loadScenarioUnguarded(const YAML::Node& root, const std::string& base_d
   ParamReader simulation(top.child("simulation"));
   simulation.read(simulationParams(), sc);
   simulation.finish();
-  validateParams(simulationParams(), sc, "simulation");
+  validateParams(simulationParams(), sc, simulation.at("").name());
   top.finish();
   return sc;
 }

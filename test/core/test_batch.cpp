@@ -355,13 +355,14 @@ TEST(Batch, BadScenariosAreRefusedNamingTheKey)
   };
   refuse("", "scenario: must be a mapping");  // an empty file used to run a default scenario
   refuse("[1, 2, 3]", "scenario: must be a mapping");
-  refuse("ship: {manoeuvres: [{type: loop}]}", "ship.manoeuvres[0].type: = 'loop' must be");
+  refuse("ship: {manoeuvres: [{type: loop}]}", "ship.manoeuvres[0].type: 'loop' must be");
   refuse("ship: {manoeuvres: [{type: turn, radius: 1}]}", "ship.manoeuvres[0].radius = 1 is out of range");
   refuse("simulation: {duration: -5}", "simulation.duration = -5");
   refuse("comands: []", "scenario.comands: unknown key");
   refuse("commands: [{t: 5, elevator: 3}]", "commands[0].elevator = 3");
   refuse("cable: {segments: 0}", "cable.segments = 0");
   refuse("initial_state: {type: points, points: [1, 2, 3]}", "initial_state.points: must hold");
+  refuse("initial_state: {type: line, direction: [1e7, 0, 0]}", "scenario.initial_state.direction[0] = 10000000");
   refuse("commands: [{t: 5, payout_rate: 1}]", "commands[0].payout_rate: needs the winch");
   refuse("winch: {enabled: true, max_length: 100}", "cable.length = 500 is out of range");
   refuse("seabed: {type: grid, grid_file: no_such_grid.yaml}",

@@ -1,5 +1,6 @@
 // Reading and writing a parameter table's keys in YAML (the configuration files, scenarios, and the ROS
-// parameter server converted to YAML), with the key path of every error. Private to the libraries.
+// parameter server converted to YAML), with the key path of every error. Used by the libraries and the
+// ROS edge (ros/conversions.h); not part of the core's API.
 #pragma once
 
 #include <yaml-cpp/yaml.h>

@@ -143,7 +143,7 @@ public:
           s.*member = n.second;
           return;
         }
-      throw std::invalid_argument("= '" + v + "' must be " + allowed);
+      throw std::invalid_argument("'" + v + "' must be " + allowed);
     };
     return add(std::move(p));
   }

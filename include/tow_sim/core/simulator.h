@@ -101,8 +101,8 @@ public:
 
   // Takes the layout of a saved state (or a test's): nu segments and the cable out [m] (the first segment
   // gets the rest). A reset() with as many joints must follow. Throws std::invalid_argument for a layout
-  // the cable cannot have (no segment, a first segment not longer than 0, cable out beyond the winch's
-  // limits while it is enabled).
+  // the cable cannot have (no segment or more than 100000, a first segment not longer than 0, cable out
+  // beyond the winch's limits while it is enabled, or other than the configured cable without the winch).
   void restoreLayout(int segments, double cable_out);
 
   // The right-hand side dy/dt at (t, y) for the current data: no side effect (only the solver's
@@ -112,8 +112,9 @@ public:
   // The data that changes while running. Commands act from time(); the currents are validated first
   // (std::invalid_argument naming the field).
   const ChainData& data() const { return data_; }
-  bool command(double rudder, double elevator, double thrust);  // true if something saturated
-  void resetActuators(double t);                                // fins centred, no thrust, from time t [s]
+  bool command(double rudder, double elevator, double thrust);              // true if something saturated
+  bool commandAt(double t, double rudder, double elevator, double thrust);  // from time t [s] (a restart)
+  void resetActuators(double t);                                            // fins centred, no thrust, from time t [s]
   void setCurrent(const Eigen::Vector3d& current_W);
   void setCurrentProfile(const std::vector<CurrentSample>& profile);
 

@@ -81,13 +81,15 @@ public:
   TowRun(const SimulationConfig& config, std::shared_ptr<ShipHistory> ship,
          const InitialShape& initial = InitialShape());
 
-  // Lays the cable out at time t at the ship's pose then, by the initial-shape policy: fins centred and the
-  // scheduled commands due by t applied, the winch from rest. Returns a warning when it had to fall back
-  // (no equilibrium: a straight line), else "".
+  // Lays the cable out at time t at the ship's pose then, by the initial-shape policy, whatever ran before
+  // (a restart is a start): the last scheduled command due by t applied from t (fins from centre, thrust,
+  // the winch from rest), the autopilot afresh with its setpoints due by t and its ticks from t on.
+  // Returns a warning when it had to fall back (no equilibrium: a straight line), else "".
   std::string start(double t);
   bool started() const { return started_; }
 
-  // Commands due later, applied in time order as the run passes them (sorted here).
+  // Commands due later, applied in time order as the run passes them (sorted here); after start(), those
+  // before the run's time act at once.
   void schedule(std::vector<CommandEvent> commands);
   // The depth autopilot in the loop: it commands the fins at its rate from vehicle outputs and the ship's
   // track, with its setpoints at their times. Validates its parameters.
@@ -99,10 +101,10 @@ public:
   void setCurrent(const Eigen::Vector3d& current_W) { sim_.setCurrent(current_W); }
   void setCurrentProfile(const std::vector<CurrentSample>& profile) { sim_.setCurrentProfile(profile); }
 
-  // Integrates to t (>= time()), applying the scheduled commands, setpoints and autopilot ticks due on the
-  // way in time order. Throws std::runtime_error on divergence (the last good state stays).
+  // Integrates to t (finite, >= time(); else std::invalid_argument), applying the scheduled commands, setpoints and
+  // autopilot ticks due on the way in time order. Throws std::runtime_error on divergence (the last good state stays).
   StepReport advanceTo(double t);
-  // Every output now; the length-error maximum starts again.
+  // Every output now; the length-error maximum starts again. Both throw std::logic_error before start().
   TowSnapshot snapshot();
 
   double time() const { return sim_.time(); }
@@ -115,6 +117,8 @@ public:
 private:
   ChainState initialState(double t, std::string* warning) const;
   void autopilotTick(double t);
+  void applySetpoint(const AutopilotSetpoint& setpoint);
+  long firstTickFrom(double t) const;  // the autopilot's first tick at or after t [s]
   VehicleOutputs vehicleOutputs() const;
 
   SimulationConfig config_;

@@ -1,6 +1,6 @@
 // Conversions at the ROS edge: parameter trees to YAML (so the configuration loader reads them), Eigen
-// to messages, a tow run's snapshot to the node's messages, and the tension colour scale. Stateless; tested
-// without roscore.
+// to messages, a tow run's snapshot to the node's messages, and the tension colour scale. Stateless; all
+// but the parameter-server readers (which need a NodeHandle) are tested without roscore.
 #pragma once
 
 #include <geometry_msgs/Point.h>

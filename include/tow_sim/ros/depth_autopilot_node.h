@@ -31,10 +31,7 @@ private:
   bool frameOk(const nav_msgs::Odometry& msg, const char* topic);
 
   ros::NodeHandle nh_, pnh_;
-  AutopilotNodeParams node_params_;
-  DepthAutopilotParams params_;
-  double rate_ = 10.0;                // [Hz] fins/command
-  std::string world_frame_ = "odom";  // frame of both odometries
+  AutopilotNodeParams node_params_;  // the controller's gains, the rate and the world frame
   DepthAutopilot autopilot_;
   bool announced_hold_ = false;
   ros::Subscriber vehicle_sub_, ship_sub_, setpoint_sub_, altitude_setpoint_sub_, state_sub_;

@@ -69,7 +69,8 @@ private:
   std::shared_ptr<ShipHistory> ship_;  // the accepted odometry, kept from the simulation's time on
   TowRun run_;
   OdometryLimits odometry_limits_;
-  TowSnapshot last_;  // the last published outputs (the status line prints them)
+  TowSnapshot last_;        // the last published outputs (the status line prints them)
+  bool have_last_ = false;  // last_ is of the current run
 
   int64_t time_origin_ns_ = 0;
   ros::Time last_tf_stamp_;
@@ -86,7 +87,7 @@ private:
   uint64_t restarts_ = 0;
   std::deque<double> restart_walls_;  // [s] wall times of the recent restarts (at most kRestartBurst)
   bool diverging_ = false;            // kRestartBurst restarts within kRestartWindow: holding until ~reset
-  double max_length_error_ = 0.0;
+  double max_length_error_ = 0.0;     // [-] over the outputs since the last diagnostics report
   bool holding_ = false;
 
   ros::Subscriber odom_sub_, fin_sub_, current_sub_, current_profile_sub_, winch_sub_;

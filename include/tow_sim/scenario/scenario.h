@@ -37,9 +37,6 @@ struct Manoeuvre
   std::vector<Eigen::Vector2d> points;
 };
 
-// The depth autopilot in the loop (tow_sim_batch): its gains, its rate and a setpoint schedule.
-using AutopilotScenario = AutopilotLoop;
-
 struct Scenario
 {
   SimulationConfig config;
@@ -48,9 +45,9 @@ struct Scenario
   double start_heading = 0.0;                                      // [rad] ENU, from +x counter-clockwise
   std::vector<Manoeuvre> manoeuvres;                               // one after the other
   std::vector<CommandEvent> commands;                              // sorted by time
-  AutopilotScenario autopilot;                                     // drives the fins when enabled
-  InitialShape initial;          // equilibrium (default), line (direction in the ship frame) or points (world)
-  double duration = 600.0;       // [s]
+  AutopilotLoop autopilot;  // the depth autopilot in the loop: gains, rate, setpoints; drives the fins when enabled
+  InitialShape initial;     // equilibrium (default), line (direction in the ship frame) or points (world)
+  double duration = 600.0;  // [s]
   double output_interval = 1.0;  // [s] timeseries.csv
   double shape_interval = 60.0;  // [s] shapes.csv
 };

@@ -1,0 +1,115 @@
+// TowRun, the one run loop, driven directly: a start at any time (a restart is a start) replays the
+// schedule as it stands then, the autopilot starts afresh from that time, and bad arguments are refused.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+
+#include "tow_sim/core/tow_run.h"
+
+namespace tow_sim
+{
+namespace
+{
+// A ship at 2 m/s along +x, sampled every second for 200 s.
+std::shared_ptr<ShipHistory> straightShip()
+{
+  auto ship = std::make_shared<ShipHistory>(1.0, 1000);
+  for (int i = 0; i <= 200; ++i)
+  {
+    const double t = i;
+    ShipPose pose;
+    pose.x = 2.0 * t;
+    pose.speed = 2.0;
+    ship->add(t, Eigen::Vector3d(2.0 * t, 0.0, 0.0), Eigen::Vector3d(2.0, 0.0, 0.0), pose);
+  }
+  return ship;
+}
+
+SimulationConfig smallConfig()
+{
+  SimulationConfig c;
+  c.cable.segments = 10;
+  return c;
+}
+
+CommandEvent thrustAndElevator(double t, double elevator, double thrust)
+{
+  CommandEvent c;
+  c.t = t;
+  c.elevator = elevator;
+  c.thrust = thrust;
+  return c;
+}
+
+TEST(TowRun, AStartAtAnyTimeAppliesTheLastCommandDueThenFromThatTime)
+{
+  TowRun run(smallConfig(), straightShip());
+  run.schedule({ thrustAndElevator(0.0, 0.1, 50.0), thrustAndElevator(10.0, -0.1, 200.0) });
+  run.start(5.0);
+  const Actuators& a = run.simulator().data().actuators;
+  EXPECT_EQ(a.thrust, 50.0);
+  EXPECT_EQ(a.elevator.target(), 0.1);
+  // The servo leaves the centre at the start time, not at the previous run's time (0 here).
+  EXPECT_EQ(a.elevator.angleAt(5.0), 0.0);
+  EXPECT_GT(a.elevator.angleAt(5.1), 0.0);
+  run.advanceTo(12.0);
+  EXPECT_EQ(run.simulator().data().actuators.thrust, 200.0);  // the later command still comes
+}
+
+TEST(TowRun, ARestartReplaysTheScheduleInsteadOfForgettingIt)
+{
+  TowRun run(smallConfig(), straightShip());
+  run.schedule({ thrustAndElevator(10.0, -0.1, 200.0) });
+  run.start(0.0);
+  run.advanceTo(30.0);
+  run.start(30.0);  // as after a divergence
+  const Actuators& a = run.simulator().data().actuators;
+  EXPECT_EQ(a.thrust, 200.0);
+  EXPECT_EQ(a.elevator.target(), -0.1);
+  EXPECT_EQ(run.time(), 30.0);
+}
+
+TEST(TowRun, TheAutopilotStartsFromTheStartTime)
+{
+  AutopilotLoop loop;
+  loop.enabled = true;
+  loop.rate = 10.0;
+  AutopilotSetpoint sp;
+  sp.t = 0.0;
+  sp.value = 150.0;
+  loop.setpoints = { sp };
+  TowRun run(smallConfig(), straightShip());
+  run.setAutopilot(loop);
+  run.start(5.0);
+  EXPECT_NO_THROW(run.advanceTo(6.0));  // its first tick is at 5 s, not 0
+  const TowSnapshot s = run.snapshot();
+  ASSERT_TRUE(s.depth_setpoint.has_value());  // the setpoint due at 0 s was given at the start
+  EXPECT_EQ(*s.depth_setpoint, 150.0);
+  // Set after the start, it ticks from the run's time on.
+  TowRun later(smallConfig(), straightShip());
+  later.start(5.0);
+  later.setAutopilot(loop);
+  EXPECT_NO_THROW(later.advanceTo(6.0));
+  EXPECT_EQ(*later.snapshot().depth_setpoint, 150.0);  // a setpoint scheduled in the past acts at once
+}
+
+TEST(TowRun, RefusesATargetThatIsNotFiniteOrInThePastAndOutputsBeforeTheStart)
+{
+  TowRun run(smallConfig(), straightShip());
+  EXPECT_THROW(run.snapshot(), std::logic_error);
+  EXPECT_THROW(run.advanceTo(1.0), std::logic_error);
+  EXPECT_THROW(run.start(std::numeric_limits<double>::quiet_NaN()), std::invalid_argument);
+  run.schedule({ thrustAndElevator(1.0, 0.0, 10.0) });
+  run.start(0.0);
+  run.advanceTo(2.0);
+  for (double bad : { std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(), 1.0 })
+    EXPECT_THROW(run.advanceTo(bad), std::invalid_argument) << bad;
+  EXPECT_EQ(run.time(), 2.0);  // nothing moved
+  EXPECT_NO_THROW(run.snapshot());
+}
+
+}  // namespace
+}  // namespace tow_sim
