@@ -40,6 +40,7 @@ struct Recorder
   std::mutex mutex;
   std::map<std::string, tow_sim::CableState> state;
   std::map<std::string, nav_msgs::Odometry> odom;
+  std::map<std::string, std::map<ros::Time, nav_msgs::Odometry>> odom_by_stamp;  // the last 100 per node
   std::map<std::string, int> state_count, marker_count, non_finite_states;
   std::map<std::string, std::string> diagnostics;  // "<node>/<key>" -> value
 };
@@ -69,6 +70,10 @@ public:
                                                         {
                                                           std::lock_guard<std::mutex> lock(rec_.mutex);
                                                           rec_.odom[n] = *m;
+                                                          auto& kept = rec_.odom_by_stamp[n];
+                                                          kept[m->header.stamp] = *m;
+                                                          if (kept.size() > 100)
+                                                            kept.erase(kept.begin());
                                                         }));
       subs_.push_back(
           nh_.subscribe<visualization_msgs::MarkerArray>("/" + n + "/cable/markers", 5,
@@ -474,6 +479,18 @@ TEST(TowSimNode, WinchPaysOutOverTheSeabedAndTheStateSaysSo)
   rate.data = 1.0;
   winch.publish(rate);
   world->advance(20.0);
+  // The vehicle odometry of the same output as the last state (it may arrive just after the state).
+  const ros::WallTime wait_for_odom = ros::WallTime::now() + ros::WallDuration(5.0);
+  for (;;)
+  {
+    {
+      std::lock_guard<std::mutex> lock(world->rec_.mutex);
+      if (world->rec_.odom_by_stamp["winch"].count(world->rec_.state["winch"].header.stamp) ||
+          ros::WallTime::now() > wait_for_odom)
+        break;
+    }
+    ros::WallDuration(0.01).sleep();
+  }
   std::lock_guard<std::mutex> lock(world->rec_.mutex);
   const tow_sim::CableState& s = world->rec_.state["winch"];
   std::printf(
@@ -491,7 +508,9 @@ TEST(TowSimNode, WinchPaysOutOverTheSeabedAndTheStateSaysSo)
   EXPECT_TRUE(s.seabed_present);
   EXPECT_TRUE(allFinite(s));
   // The vehicle's altitude is the seabed's depth less its own (flat bottom).
-  const double cg_z = world->rec_.odom["winch"].pose.pose.position.z;
+  const auto same_output = world->rec_.odom_by_stamp["winch"].find(s.header.stamp);
+  ASSERT_NE(same_output, world->rec_.odom_by_stamp["winch"].end()) << "no vehicle odometry stamped as the state";
+  const double cg_z = same_output->second.pose.pose.position.z;
   EXPECT_NEAR(s.vehicle_altitude, cg_z + 60.0, 1e-6);
   EXPECT_FALSE(world->rec_.state["base"].seabed_present);
   EXPECT_NEAR(world->rec_.state["base"].cable_length, 100.0, 1e-9);
