@@ -80,6 +80,61 @@ VelocityForces velocityForces(const ElementKinematics& k, const Eigen::Vector3d&
   return f;
 }
 
+VelocityForceJacobian velocityForceJacobian(const ElementKinematics& k, const Eigen::Vector3d& current_W, double c1,
+                                            double c2, TangentialDragModel model, double smoothing_speed)
+{
+  const Eigen::Matrix3d I3 = Eigen::Matrix3d::Identity();
+  const double d = k.length;
+  const Eigen::Vector3d& s = k.s;
+  const Eigen::Matrix3d P = I3 - s * s.transpose();
+  const Eigen::Vector3d u = k.velocityAt(0.5) - current_W;
+  const double u_t = u.dot(s);
+  const Eigen::Vector3d u_n = u - u_t * s;
+  const double u_n_norm = u_n.norm();
+
+  VelocityForceJacobian J;
+  J.force_u.setZero();
+  J.moment_u.setZero();
+  J.moment_dv.setZero();
+  // Normal drag -C2 d |u_n| u_n, u_n = P u: d/du = -C2 d (|u_n| P + u_n u_n^T / |u_n|) (zero at u_n = 0).
+  if (u_n_norm > 0.0)
+    J.force_u = -c2 * d * (u_n_norm * P + u_n * u_n.transpose() / u_n_norm);
+  if (model == TangentialDragModel::kPode)
+  {
+    // -C1 d |u|^2 sg(u_t) s with sg(x) = x / sqrt(x^2 + e^2), sg'(x) = e^2 / (x^2 + e^2)^(3/2).
+    const double e2 = smoothing_speed * smoothing_speed;
+    const double root = std::sqrt(u_t * u_t + e2);
+    const double sg = u_t / root, sg_prime = e2 / (root * root * root);
+    J.force_u -= c1 * d * s * (2.0 * sg * u + u.squaredNorm() * sg_prime * s).transpose();
+  }
+  else
+  {
+    J.force_u -= 2.0 * c1 * d * std::abs(u_t) * s * s.transpose();  // -C1 d |u_t| u_t s
+  }
+  // M_V = (C2 d^3 / 6) (u.(w x s)) (s x q) with w x s = P dv / d and q = -n, n = u_n / |u_n|:
+  // M_V = -beta (u_n . dv) [s]x n, beta = C2 d^2 / 6.
+  if (u_n_norm > 1e-12)  // velocityForces' kTinySpeed: M_V is zero below it
+  {
+    const double beta = c2 * d * d / 6.0;
+    const Eigen::Vector3d dv = k.v_a - k.v_f;
+    const Eigen::Vector3d n = u_n / u_n_norm;
+    const Eigen::Matrix3d S = skew(s);
+    J.moment_dv = -beta * (S * n) * u_n.transpose();
+    // d(u_n . dv)/du = (P dv)^T; d n / du = (P - n n^T) / |u_n|.
+    J.moment_u = -beta * ((S * n) * (P * dv).transpose() + (u_n.dot(dv) / u_n_norm) * S * (P - n * n.transpose()));
+  }
+  return J;
+}
+
+Matrix6d jointMap(const Eigen::Vector3d& s, double length, double cg_fraction)
+{
+  const Eigen::Matrix3d I3 = Eigen::Matrix3d::Identity();
+  const Eigen::Matrix3d S = skew(s) / length;
+  Matrix6d J;
+  J << (1.0 - cg_fraction) * I3, cg_fraction * I3, -S, S;
+  return J;
+}
+
 void cableSegmentDynamics(const CableSegmentModel& seg, const ElementKinematics& k, const Environment& env,
                           BodyDynamics& out)
 {

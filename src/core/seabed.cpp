@@ -108,6 +108,34 @@ Eigen::Vector3d Seabed::contactForce(const Eigen::Vector3d& p_W, const Eigen::Ve
   return f;
 }
 
+void Seabed::contactJacobian(const Eigen::Vector3d& p_W, const Eigen::Vector3d& v_W, double stiffness, double damping,
+                             Eigen::Matrix3d& df_dp, Eigen::Matrix3d& df_dv) const
+{
+  df_dp.setZero();
+  df_dv.setZero();
+  if (p_.type == SeabedParams::Type::kNone)
+    return;
+  const double below = -altitude(p_W);
+  if (below <= 0.0)
+    return;
+  const Eigen::Vector3d n = normal(p_W.x(), p_W.y());
+  const double normal_speed = v_W.dot(n);
+  const double push = stiffness * below * n.z() - damping * normal_speed;
+  if (push <= 0.0)
+    return;
+  // The penetration below * n_z grows along -n (the bottom z = -depth(x, y) has the normal
+  // (d depth/dx, d depth/dy, 1) / norm, so d below / dp = -n / n_z): d push / dp = -k n, d push / dv = -c n.
+  const Eigen::Matrix3d I3 = Eigen::Matrix3d::Identity();
+  const Eigen::Vector3d slide = v_W - normal_speed * n;
+  const double root = std::sqrt(slide.squaredNorm() + p_.friction_speed * p_.friction_speed);
+  // f = push (n - friction slide / root): its direction times d push, plus push times d(direction).
+  const Eigen::Vector3d direction = n - p_.friction * slide / root;
+  df_dp = direction * (-stiffness * n).transpose();
+  df_dv = direction * (-damping * n).transpose();
+  const Eigen::Matrix3d along = I3 - n * n.transpose();  // d slide / dv
+  df_dv -= p_.friction * push * (I3 - slide * slide.transpose() / (root * root)) / root * along;
+}
+
 void liftAboveSeabed(const Seabed& seabed, ChainState& state)
 {
   if (!seabed.present())

@@ -3,10 +3,13 @@
 //
 // Three passes (pinocchio's aba.hxx reads the same way):
 //   elementTerms   each element's Newton-Euler equations projected onto its two joints (S1)-(S6);
-//   backwardSweep  from the end body to the ship, each joint's tension as an affine function of its own
+//   backward sweep from the end body to the ship, each joint's tension as an affine function of its own
 //                  acceleration, T = K a + tau, and the acceleration transfer a_aft = Phi a_fwd + phi
-//                  (S7)-(S13): the report's summation of the linear-momentum equations, done recursively;
-//   forwardSweep   from the ship's known acceleration, every acceleration and tension (S14).
+//                  (S7)-(S13): the report's summation of the linear-momentum equations, done recursively.
+//                  It is split in two: the matrix pass (K, Phi: the inertia and the axes only) and the
+//                  vector pass (tau, phi: the loads), so that the implicit stepper factors its stage
+//                  matrix once per step and solves each stage with a vector pass (docs/solver.md §7);
+//   forward sweep  from the ship's known acceleration, every acceleration and tension (S14).
 #pragma once
 
 #include <Eigen/Core>
@@ -17,7 +20,8 @@
 namespace tow_sim
 {
 // One element's equations on its joints (docs/solver.md §2): M_ff a_f + M_fa a_a - h_f = T_fwd - mu s,
-// M_af a_f + M_aa a_a - h_a = -T_aft + mu s, s.(a_a - a_f) = c.
+// M_af a_f + M_aa a_a - h_a = -T_aft + mu s, s.(a_a - a_f) = c. The implicit stepper's stage equations have
+// the same form (M -> N, h -> g: docs/solver.md §7).
 struct ElementTerms
 {
   Eigen::Matrix3d M_ff, M_fa, M_af, M_aa;  // projected inertia (S5) [kg]
@@ -26,29 +30,56 @@ struct ElementTerms
   double c = 0.0;                          // [m/s^2] right-hand side of the length constraint (S6)
 };
 
+// The backward and forward sweeps over a chain of element equations whose end body's tail is free
+// (T = 0 aft of it): (S7)-(S14).
+class ChainSweep
+{
+public:
+  // The matrix pass: everything that depends on the blocks M and the axes s only (S8)-(S13).
+  void factor(const std::vector<ElementTerms>& terms);
+  // The vector pass for the loads h and constraints c of `terms` (the blocks factor() was given), then the
+  // forward sweep from the first joint's acceleration a_first: every acceleration (3 x elements) and, when
+  // not null, the tension at each element's forward joint and the axial multiplier mu (compression positive).
+  void solve(const std::vector<ElementTerms>& terms, const Eigen::Vector3d& a_first, Eigen::Ref<Eigen::Matrix3Xd> a,
+             Eigen::Matrix3Xd* tensions = nullptr, std::vector<double>* multipliers = nullptr);
+
+private:
+  struct Factor
+  {
+    Eigen::Matrix3d A_inv;  // the aft joint's regularised inertia, inverted (S9)
+    Eigen::Matrix3d Phi;    // a_aft = Phi a_fwd + phi (S12)
+    Eigen::Matrix3d K;      // T_fwd = K a_fwd + tau (S13)
+    Eigen::Vector3d b, b_t, xi;
+    double sigma = 0.0, kappa = 0.0;
+  };
+  std::vector<Factor> factors_;
+  std::vector<Eigen::Vector3d> phi_, tau_;
+  std::vector<double> eta_;
+};
+
 class ChainSolver
 {
 public:
   // t: time [s]; x, v: joints x_2 .. x_{nu+2} (3 x (nu+1)), world, for the chain's geometry and data at
-  // that instant. Writes their accelerations into a and, when tensions is not null, T_1 .. T_{nu+1}
-  // (3 x (nu+1)): the force on element lambda at its forward joint, i.e. the pull toward the ship; T_1 is
-  // the tow force the ship applies. Only the solver's own workspace changes.
+  // that instant. Writes their accelerations into a and, when not null, T_1 .. T_{nu+1} (3 x (nu+1)): the
+  // force on element lambda at its forward joint, i.e. the pull toward the ship (T_1 is the tow force the
+  // ship applies), and each element's axial multiplier mu [N] (compression positive: the element's
+  // tension is -mu). Only the solver's own workspace changes.
   void solve(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data, double t,
              const ShipEndState& ship, const Eigen::Ref<const Eigen::Matrix3Xd>& x,
              const Eigen::Ref<const Eigen::Matrix3Xd>& v, Eigen::Ref<Eigen::Matrix3Xd> a,
-             Eigen::Matrix3Xd* tensions = nullptr);
+             Eigen::Matrix3Xd* tensions = nullptr, std::vector<double>* multipliers = nullptr);
+
+  // The element equations of the last solve (the implicit stepper linearises around them).
+  const std::vector<ElementTerms>& terms() const { return terms_; }
 
 private:
   void elementTerms(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data, double t,
                     const ShipEndState& ship, const Eigen::Ref<const Eigen::Matrix3Xd>& x,
                     const Eigen::Ref<const Eigen::Matrix3Xd>& v);
-  void backwardSweep();
-  void forwardSweep(const Eigen::Vector3d& a_ship, Eigen::Ref<Eigen::Matrix3Xd> a, Eigen::Matrix3Xd* tensions) const;
 
-  // Workspace, one entry per element.
-  std::vector<ElementTerms> terms_;
-  std::vector<Eigen::Matrix3d> Phi_, K_;  // a_aft = Phi a_fwd + phi (S12); T_fwd = K a_fwd + tau (S13)
-  std::vector<Eigen::Vector3d> phi_, tau_;
+  std::vector<ElementTerms> terms_;  // workspace, one entry per element
+  ChainSweep sweep_;
 };
 
 }  // namespace tow_sim

@@ -64,6 +64,23 @@ struct VelocityForces
 VelocityForces velocityForces(const ElementKinematics& k, const Eigen::Vector3d& current_W, double c1, double c2,
                               TangentialDragModel model, double smoothing_speed);
 
+// Derivatives of velocityForces at the same arguments (for the implicit stepper): with respect to the
+// centre's velocity through the water u and to the joints' relative velocity dv = v_a - v_f (through the
+// rotation w = s x dv / d), the axis held fixed.
+struct VelocityForceJacobian
+{
+  Eigen::Matrix3d force_u;    // [N s/m] d force / d u
+  Eigen::Matrix3d moment_u;   // [N s] d moment / d u
+  Eigen::Matrix3d moment_dv;  // [N s] d moment / d dv
+};
+VelocityForceJacobian velocityForceJacobian(const ElementKinematics& k, const Eigen::Vector3d& current_W, double c1,
+                                            double c2, TangentialDragModel model, double smoothing_speed);
+
+// The joint accelerations to the CG acceleration and angular acceleration of an element with axis s,
+// length d and CG fraction gamma (docs/solver.md (S1)): [a_G; dw/dt] = J_f a_f + J_a a_a. Returns
+// [J_f J_a] (6 x 6); its transpose projects a wrench at the CG onto the two joints (S5).
+Matrix6d jointMap(const Eigen::Vector3d& s, double length, double cg_fraction);
+
 void cableSegmentDynamics(const CableSegmentModel& seg, const ElementKinematics& k, const Environment& env,
                           BodyDynamics& out);
 

@@ -57,6 +57,10 @@ public:
   // against the sliding velocity, at most `friction` times the normal force.
   Eigen::Vector3d contactForce(const Eigen::Vector3d& p_W, const Eigen::Vector3d& v_W, double stiffness,
                                double damping) const;
+  // Its derivatives with respect to p [N/m] and v [N s/m] (for the implicit stepper), the normal held
+  // fixed (on a grid it also turns with p: left out); zero where the force is.
+  void contactJacobian(const Eigen::Vector3d& p_W, const Eigen::Vector3d& v_W, double stiffness, double damping,
+                       Eigen::Matrix3d& df_dp, Eigen::Matrix3d& df_dv) const;
 
   const SeabedParams& params() const { return p_; }
 
