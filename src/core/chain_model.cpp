@@ -76,28 +76,17 @@ void ChainModel::elementDynamics(int e, double t, const ElementKinematics& k, co
 
 void ChainModel::addContact(int e, const ElementKinematics& k, const ChainGeometry& geometry, BodyDynamics& out) const
 {
-  // Contact forces at points of the element, moved to its CG. A cable segment carries its aft joint
-  // (so each joint x_2 .. x_{nu+1} once) with the stiffness of the cable that joint stands for: half of
-  // each neighbouring segment (the bail: half the last one); the end body its own contact points.
+  // Contact forces at the element's contact points, moved to its CG.
   const Seabed& bottom = *seabed();
   const Eigen::Vector3d x_G = k.pointAt(out.cg_fraction);
-  auto add = [&](double eta, double stiffness, double damping)
-  {
-    const Eigen::Vector3d p = k.pointAt(eta);
-    const Eigen::Vector3d f = bottom.contactForce(p, k.velocityAt(eta), stiffness, damping);
-    out.wrench.head<3>() += f;
-    out.wrench.tail<3>() += (p - x_G).cross(f);
-  };
-  const SeabedParams& sp = bottom.params();
-  if (e < geometry.segments)
-  {
-    const double carried =
-        0.5 * (geometry.elementLength(e) + (e + 1 < geometry.segments ? geometry.elementLength(e + 1) : 0.0));
-    add(1.0, sp.stiffness * carried, sp.damping * carried);
-    return;
-  }
-  for (double eta : end_body_->contactFractions())
-    add(eta, sp.vehicle_stiffness, sp.vehicle_damping);
+  forEachContact(e, geometry,
+                 [&](double eta, double stiffness, double damping)
+                 {
+                   const Eigen::Vector3d p = k.pointAt(eta);
+                   const Eigen::Vector3d f = bottom.contactForce(p, k.velocityAt(eta), stiffness, damping);
+                   out.wrench.head<3>() += f;
+                   out.wrench.tail<3>() += (p - x_G).cross(f);
+                 });
 }
 
 void setCurrent(ChainData& data, const Eigen::Vector3d& current_W)

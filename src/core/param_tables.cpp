@@ -59,12 +59,23 @@ const ParamTable<NumericsParams>& numericsParams()
   using N = NumericsParams;
   static const ParamTable<N> table =
       ParamTable<N>()
-          .choice("stepper", &N::stepper, { { "dopri5", StepperType::kDopri5 }, { "rk4", StepperType::kRk4 } },
-                  "dopri5: adaptive Dormand–Prince 5(4) with error control; rk4: fixed steps for hard real time")
+          .choice("stepper", &N::stepper,
+                  { { "dopri5", StepperType::kDopri5 },
+                    { "rk4", StepperType::kRk4 },
+                    { "implicit", StepperType::kImplicit },
+                    { "implicit_fixed", StepperType::kImplicitFixed } },
+                  "dopri5: adaptive Dormand–Prince 5(4); rk4: fixed steps; implicit: linearly implicit "
+                  "Rosenbrock-W (ROS2), adaptive, O(ν) per stage; implicit_fixed: the same with fixed steps")
           .number("abs_tol", &N::abs_tol, "-", 0.0, 1.0, kOpen, "absolute error tolerance of dopri5 (m, m/s)")
           .number("rel_tol", &N::rel_tol, "-", 0.0, 1.0, kOpen, "relative error tolerance of dopri5")
-          .number("max_step", &N::max_step, "s", 0.0, 10.0, kOpen, "largest dopri5 step")
-          .number("fixed_step", &N::fixed_step, "s", 0.0, 1.0, kOpen, "step of rk4")
+          .number("implicit_position_tol", &N::implicit_position_tol, "m", 0.0, 10.0, kOpen,
+                  "absolute error tolerance of implicit on the joint positions")
+          .number("implicit_velocity_tol", &N::implicit_velocity_tol, "m/s", 0.0, 10.0, kOpen,
+                  "absolute error tolerance of implicit on the joint velocities")
+          .number("implicit_rel_tol", &N::implicit_rel_tol, "-", 0.0, 1.0, kOpen,
+                  "relative error tolerance of implicit (positions relative to the tow point)")
+          .number("max_step", &N::max_step, "s", 0.0, 10.0, kOpen, "largest step of dopri5 and implicit")
+          .number("fixed_step", &N::fixed_step, "s", 0.0, 1.0, kOpen, "step of rk4 and implicit_fixed")
           .number("tangential_smoothing_speed", &N::tangential_smoothing_speed, "m/s", 0.0, 1.0, kOpen,
                   "the Pode drag changes sign smoothly over this |u·s|");
   return table;

@@ -14,8 +14,6 @@ namespace odeint = boost::numeric::odeint;
 
 namespace
 {
-// Smallest adaptive step [s] before the integration is declared failed.
-constexpr double kMinStep = 1e-10;
 // A joint moving faster than this relative to the tow point [m/s] means the integration ran away.
 constexpr double kMaxRelativeSpeed = 200.0;
 
@@ -329,11 +327,13 @@ void Simulator::refreshOutputs()
   accelerations_.resize(3, L.joints);
   dydt_.resize(L.size());
   solver_.solve(*model_, data_.geometry, data_, t_, ship_(t_), L.positions(y_), L.velocities(y_), accelerations_,
-                &tensions_);
+                &tensions_, &multipliers_);
   L.positions(dydt_) = L.velocities(y_);
   L.velocities(dydt_) = accelerations_;
   L.cableOut(dydt_) = winch_.enabled ? L.payoutRate(y_) : 0.0;
   L.payoutRate(dydt_) = winch_.enabled ? data_.geometry.first_acceleration : 0.0;
+  if (implicit())
+    linearise();
 }
 
 void Simulator::project(double t)
@@ -410,7 +410,12 @@ void Simulator::stepOnce(double t_end, double winch_step, StepReport& report)
   auto system = [this](const StateVector& y, StateVector& dydt, double t) { derivative(t, y, dydt); };
   const StateVector y_prev = y_;
   const double t_prev = t_;
-  if (num.stepper == StepperType::kRk4)
+  if (implicit())
+  {
+    if (!stepImplicit(t_end, winch_step, report))
+      return;
+  }
+  else if (num.stepper == StepperType::kRk4)
   {
     const double h = std::min({ num.fixed_step, winch_step, t_end - t_ });
     steppers_->rk4.do_step(system, y_, dydt_, t_, h);

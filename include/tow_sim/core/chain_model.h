@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 #include <memory>
+#include <vector>
 
 #include "tow_sim/core/element.h"
 #include "tow_sim/core/params.h"
@@ -89,6 +90,27 @@ public:
   // and data at that instant; with_contact false leaves out the seabed.
   void elementDynamics(int e, double t, const ElementKinematics& k, const ChainGeometry& geometry,
                        const ChainData& data, BodyDynamics& out, bool with_contact = true) const;
+
+  // Calls visit(eta, stiffness [N/m], damping [N s/m]) for each point of element e that meets the seabed
+  // (eta: the fraction of the way from its forward to its aft joint). A cable segment carries its aft
+  // joint (so each joint x_2 .. x_{nu+1} once) with the stiffness of the cable that joint stands for: half
+  // of each neighbouring segment (the bail: half the last one); the end body its own contact points.
+  template <class Visit>
+  void forEachContact(int e, const ChainGeometry& geometry, Visit&& visit) const
+  {
+    if (!seabed())
+      return;
+    const SeabedParams& sp = seabed()->params();
+    if (e < geometry.segments)
+    {
+      const double carried =
+          0.5 * (geometry.elementLength(e) + (e + 1 < geometry.segments ? geometry.elementLength(e + 1) : 0.0));
+      visit(1.0, sp.stiffness * carried, sp.damping * carried);
+      return;
+    }
+    for (double eta : end_body_->contactFractions())
+      visit(eta, sp.vehicle_stiffness, sp.vehicle_damping);
+  }
 
 private:
   void addContact(int e, const ElementKinematics& k, const ChainGeometry& geometry, BodyDynamics& out) const;

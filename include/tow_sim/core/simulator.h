@@ -11,6 +11,7 @@
 
 #include "tow_sim/core/chain_model.h"
 #include "tow_sim/core/chain_solver.h"
+#include "tow_sim/core/implicit_stepper.h"
 
 namespace tow_sim
 {
@@ -159,7 +160,14 @@ private:
   void project(double t);
   void refreshOutputs();
   void stepOnce(double t_end, double winch_step, StepReport& report);  // one accepted or rejected step
-  double largestRelativeSpeed(double t) const;                         // [m/s] fastest joint relative to the tow point
+  // The implicit stepper's step: false when rejected (dt_ then holds the step to try next).
+  bool stepImplicit(double t_end, double winch_step, StepReport& report);
+  bool implicit() const;  // numerics.stepper is implicit or implicit_fixed
+  double errorNorm(const StateVector& error, const StateVector& y_next, double t_next) const;  // weighted RMS
+  void linearise();                             // the implicit stepper's J at the current state (after refreshOutputs)
+  double largestRelativeSpeed(double t) const;  // [m/s] fastest joint relative to the tow point
+
+  static constexpr double kMinStep = 1e-10;  // [s] smallest adaptive step before the integration fails
 
   struct Steppers;  // Boost.Odeint's, sized for the state (re-made when the winch re-meshes)
   std::shared_ptr<const ChainModel> model_;
@@ -173,6 +181,9 @@ private:
   StateVector y_;    // StateLayout
   StateVector dydt_;
   Eigen::Matrix3Xd tensions_, accelerations_;
+  std::vector<double> multipliers_;  // each element's axial multiplier at the current state [N]
+  ImplicitStepper implicit_;
+  StateVector k1_, k2_, stage_y_, stage_f_, y_next_, error_;  // the implicit step's workspace
 };
 
 }  // namespace tow_sim

@@ -1,0 +1,55 @@
+// The linearly implicit step (docs/solver.md §7): ROS2, a two-stage Rosenbrock-W method of order 2,
+// L-stable with gamma = 1 + 1/sqrt(2) (Verwer, Spee, Blom and Hundsdorfer 1999), with an embedded
+// first-order solution for the error estimate:
+//   W K1 = f(t, y),  W K2 = f(t + h, y + h K1) - 2 K1,  W = I - gamma h J,
+//   y_next = y + h (3/2 K1 + 1/2 K2),  error = h (K1 + K2) / 2.
+// J is an approximation of the right-hand side's Jacobian taken once per step (a W-method keeps its order
+// with any J). Each stage solve (I - gamma h J) K = r costs O(nu): with K = (K_x, K_v) for the positions
+// and velocities, K_x = r_x + gamma h K_v, and K_v with the multipliers solves equations of the solver's
+// own form, element by element,
+//   N_ff K_f + N_fa K_a - g_f = T_fwd - mu s,  N_af K_f + N_aa K_a - g_a = -T_aft + mu s,  s.(K_a - K_f) = c',
+//   N = M - gamma h D - (gamma h)^2 K,  g = M r_v + gamma h K r_x,  c' = s.(r_v,a - r_v,f),
+// (M the projected inertia, D and K the load derivatives of chain_jacobian.h), so ChainSweep solves them:
+// the matrix pass once per step size, a vector pass per stage. The tow point is prescribed (K = 0 there).
+// The winch's cable out and rate form their own 2 x 2 block.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "tow_sim/core/chain_jacobian.h"
+#include "tow_sim/core/chain_solver.h"
+
+namespace tow_sim
+{
+class ImplicitStepper
+{
+public:
+  static constexpr double kGamma = 1.7071067811865475;  // 1 + 1/sqrt(2)
+
+  // The linearisation at a state: `terms` and `multipliers` of a ChainSolver::solve at it (the projected
+  // inertia, the axes, the axial forces), its joints x, v (3 x (nu+1)), the tow point's motion, and the
+  // winch's rate law's derivatives d(payout acceleration)/d(cable out) [1/s^2] and /d(rate) [1/s].
+  void linearise(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data, double t,
+                 const ShipEndState& ship, const Eigen::Ref<const Eigen::Matrix3Xd>& x,
+                 const Eigen::Ref<const Eigen::Matrix3Xd>& v, const std::vector<ElementTerms>& terms,
+                 const std::vector<double>& multipliers, double winch_d_length, double winch_d_rate);
+  // The stage matrix for the step h [s] and its matrix pass (after linearise; again after each change of h).
+  void factor(double h);
+  // K = (I - gamma h J)^-1 r for r laid out as StateLayout with as many joints as the linearisation.
+  void solve(const std::vector<double>& r, std::vector<double>& K);
+
+  double step() const { return h_; }  // [s] as factored
+  int joints() const { return static_cast<int>(jacobians_.size()); }
+
+private:
+  std::vector<ElementTerms> inertia_;       // M and s at the linearisation (their h, c unused)
+  std::vector<ElementJacobian> jacobians_;  // D and K per element
+  std::vector<ElementTerms> stage_;         // N, and per stage g and c'
+  ChainSweep sweep_;
+  Eigen::Matrix3Xd K_v_;
+  double h_ = 0.0;
+  double winch_d_length_ = 0.0, winch_d_rate_ = 0.0;
+};
+
+}  // namespace tow_sim

@@ -1,0 +1,111 @@
+#include "tow_sim/core/chain_jacobian.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "tow_sim/core/geometry.h"
+
+namespace tow_sim
+{
+namespace
+{
+using Matrix63d = Eigen::Matrix<double, 6, 3>;
+using Matrix36d = Eigen::Matrix<double, 3, 6>;
+
+// Cable segment e: d w / d(v_f, v_a) and d w / d(x_f, x_a) of its wrench at the CG (the centre), then
+// projected with [J_f J_a]^T.
+void segmentJacobian(const ChainModel& model, int e, const ElementKinematics& k, const ChainGeometry& geometry,
+                     const ChainData& data, ElementJacobian& out)
+{
+  const Eigen::Matrix3d I3 = Eigen::Matrix3d::Identity();
+  const CableSegmentModel seg = e == 0 ? model.firstSegment(geometry) : model.segment();
+  const double rate = e == 0 ? geometry.first_rate : 0.0;
+  // The first segment's cable moves at the payout rate along it (ChainModel::elementDynamics): the same
+  // derivatives, at the shifted velocity.
+  const ElementKinematics kw = rate != 0.0 ? ElementKinematics::fromJoints(k.x_f, k.x_a, k.v_f + rate * k.s, k.v_a) : k;
+  const VelocityForceJacobian vf = velocityForceJacobian(kw, data.environment.currentAt(kw.pointAt(0.5).z()), seg.c1,
+                                                         seg.c2, seg.tangential_model, seg.smoothing_speed);
+  // u = (v_f + v_a)/2 - current, dv = v_a - v_f.
+  Matrix6d dw_dv;
+  dw_dv << 0.5 * vf.force_u, 0.5 * vf.force_u, 0.5 * vf.moment_u - vf.moment_dv, 0.5 * vf.moment_u + vf.moment_dv;
+  if (rate != 0.0)
+  {
+    // ChainSolver: wrench += (2 L'/L) I_rot w with w = s x dv / L (the segment's rotary inertia m L^2 / 12).
+    const double rotary = seg.mass * seg.length * seg.length / 12.0;
+    const Eigen::Matrix3d dm = (2.0 * rate / k.length) * rotary * skew(k.s) / k.length;
+    dw_dv.bottomLeftCorner<3, 3>() -= dm;
+    dw_dv.bottomRightCorner<3, 3>() += dm;
+  }
+  Matrix6d dw_dx = Matrix6d::Zero();
+  if (const Seabed* bottom = model.seabed())
+  {
+    const Eigen::Vector3d x_G = k.pointAt(0.5);
+    model.forEachContact(e, geometry,
+                         [&](double eta, double stiffness, double damping)
+                         {
+                           const Eigen::Vector3d p = k.pointAt(eta);
+                           Eigen::Matrix3d df_dp, df_dv;
+                           bottom->contactJacobian(p, k.velocityAt(eta), stiffness, damping, df_dp, df_dv);
+                           Matrix63d arm;  // a force at p as a wrench at the CG
+                           arm << I3, skew(p - x_G);
+                           Matrix36d at;  // p and its velocity from the joints'
+                           at << (1.0 - eta) * I3, eta * I3;
+                           dw_dv += arm * df_dv * at;
+                           dw_dx += arm * df_dp * at;
+                         });
+  }
+  const Matrix6d J = jointMap(k.s, k.length, 0.5);
+  out.dh_dv = J.transpose() * dw_dv;
+  out.dh_dx = J.transpose() * dw_dx;
+}
+
+// The end body: forward differences of its projected loads over x_f, x_a, v_f, v_a.
+void endBodyJacobian(const ChainModel& model, int e, double t, const ElementKinematics& k,
+                     const ChainGeometry& geometry, const ChainData& data, ElementJacobian& out)
+{
+  BodyDynamics body;
+  auto loads = [&](const ElementKinematics& kk) -> Vector6d
+  {
+    model.elementDynamics(e, t, kk, geometry, data, body);
+    return jointMap(kk.s, kk.length, body.cg_fraction).transpose() * body.wrench;
+  };
+  const Vector6d h0 = loads(k);
+  Eigen::Vector3d joint[4] = { k.x_f, k.x_a, k.v_f, k.v_a };
+  for (int j = 0; j < 12; ++j)
+  {
+    Eigen::Vector3d& component_of = joint[j / 3];
+    const double saved = component_of[j % 3];
+    const bool position = j < 6;
+    // About sqrt(machine epsilon) of the scale of what is perturbed: the element's length, the speed.
+    const double step = 1e-7 * (position ? std::max(1.0, k.length) : std::max(1.0, std::abs(saved)));
+    component_of[j % 3] = saved + step;
+    const Vector6d h = loads(ElementKinematics::fromJoints(joint[0], joint[1], joint[2], joint[3]));
+    component_of[j % 3] = saved;
+    (position ? out.dh_dx : out.dh_dv).col(j % 6) = (h - h0) / step;
+  }
+}
+}  // namespace
+
+void addGeometricStiffness(const ElementKinematics& k, double mu, ElementJacobian& out)
+{
+  // The axial force (-mu s on the forward joint, +mu s on the aft one) turns with s = (x_a - x_f)/d:
+  // d(mu s)/d x_a = mu (I - s s^T)/d. Only a tension (mu < 0) stiffens.
+  const double tension = std::max(-mu, 0.0);
+  const Eigen::Matrix3d G = tension / k.length * (Eigen::Matrix3d::Identity() - k.s * k.s.transpose());
+  out.dh_dx.topLeftCorner<3, 3>() -= G;
+  out.dh_dx.topRightCorner<3, 3>() += G;
+  out.dh_dx.bottomLeftCorner<3, 3>() += G;
+  out.dh_dx.bottomRightCorner<3, 3>() -= G;
+}
+
+void elementJacobian(const ChainModel& model, int e, double t, const ElementKinematics& k,
+                     const ChainGeometry& geometry, const ChainData& data, double mu, ElementJacobian& out)
+{
+  if (e < geometry.segments)
+    segmentJacobian(model, e, k, geometry, data, out);
+  else
+    endBodyJacobian(model, e, t, k, geometry, data, out);
+  addGeometricStiffness(k, mu, out);
+}
+
+}  // namespace tow_sim
