@@ -61,13 +61,18 @@ void segmentJacobian(const ChainModel& model, int e, const ElementKinematics& k,
 
 // The end body: forward differences of its projected loads over x_f, x_a, v_f, v_a.
 void endBodyJacobian(const ChainModel& model, int e, double t, const ElementKinematics& k,
-                     const ChainGeometry& geometry, const ChainData& data, ElementJacobian& out)
+                     const ChainGeometry& geometry, const ChainData& data, const Vector6d* accelerations,
+                     ElementJacobian& out)
 {
   BodyDynamics body;
+  // The projected loads less the projected inertia's force at the state's accelerations, J^T (w - M_b J a).
   auto loads = [&](const ElementKinematics& kk) -> Vector6d
   {
     model.elementDynamics(e, t, kk, geometry, data, body);
-    return jointMap(kk.s, kk.length, body.cg_fraction).transpose() * body.wrench;
+    const Matrix6d J = jointMap(kk.s, kk.length, body.cg_fraction);
+    if (accelerations)
+      return J.transpose() * (body.wrench - body.mass * (J * *accelerations));
+    return J.transpose() * body.wrench;
   };
   const Vector6d h0 = loads(k);
   Eigen::Vector3d joint[4] = { k.x_f, k.x_a, k.v_f, k.v_a };
@@ -99,12 +104,13 @@ void addGeometricStiffness(const ElementKinematics& k, double mu, ElementJacobia
 }
 
 void elementJacobian(const ChainModel& model, int e, double t, const ElementKinematics& k,
-                     const ChainGeometry& geometry, const ChainData& data, double mu, ElementJacobian& out)
+                     const ChainGeometry& geometry, const ChainData& data, double mu, ElementJacobian& out,
+                     const Vector6d* accelerations)
 {
   if (e < geometry.segments)
     segmentJacobian(model, e, k, geometry, data, out);
   else
-    endBodyJacobian(model, e, t, k, geometry, data, out);
+    endBodyJacobian(model, e, t, k, geometry, data, accelerations, out);
   addGeometricStiffness(k, mu, out);
 }
 

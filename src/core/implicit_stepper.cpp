@@ -6,7 +6,8 @@ namespace tow_sim
 {
 void ImplicitStepper::linearise(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data, double t,
                                 const ShipEndState& ship, const Eigen::Ref<const Eigen::Matrix3Xd>& x,
-                                const Eigen::Ref<const Eigen::Matrix3Xd>& v, const std::vector<ElementTerms>& terms,
+                                const Eigen::Ref<const Eigen::Matrix3Xd>& v,
+                                const Eigen::Ref<const Eigen::Matrix3Xd>& a, const std::vector<ElementTerms>& terms,
                                 const std::vector<double>& multipliers, double winch_d_length, double winch_d_rate)
 {
   const size_t n = terms.size();
@@ -19,7 +20,9 @@ void ImplicitStepper::linearise(const ChainModel& model, const ChainGeometry& ge
     const Eigen::Vector3d x_f = e == 0 ? ship.p_W : Eigen::Vector3d(x.col(e - 1));
     const Eigen::Vector3d v_f = e == 0 ? ship.v_W : Eigen::Vector3d(v.col(e - 1));
     const ElementKinematics k = ElementKinematics::fromJoints(x_f, x.col(e), v_f, v.col(e));
-    elementJacobian(model, e, t, k, geometry, data, multipliers[i], jacobians_[i]);
+    Vector6d a_joints;
+    a_joints << (e == 0 ? ship.a_W : Eigen::Vector3d(a.col(e - 1))), a.col(e);
+    elementJacobian(model, e, t, k, geometry, data, multipliers[i], jacobians_[i], &a_joints);
     stage_[i].s = terms[i].s;
   }
   winch_d_length_ = winch_d_length;
@@ -45,7 +48,7 @@ void ImplicitStepper::factor(double h)
   h_ = h;
 }
 
-void ImplicitStepper::solve(const std::vector<double>& r, std::vector<double>& K)
+void ImplicitStepper::solve(const std::vector<double>& r, const TowPointRates& tow, std::vector<double>& K)
 {
   const StateLayout L{ joints() };
   const double gh = kGamma * h_;
@@ -53,10 +56,12 @@ void ImplicitStepper::solve(const std::vector<double>& r, std::vector<double>& K
   const auto r_v = L.velocities(r);
   for (size_t i = 0; i < stage_.size(); ++i)
   {
-    // g = M r_v + gamma h K r_x over the element's two joints (the tow point's entries are zero).
+    // g = M r_v + gamma h K r_x over the element's two joints. For the tow point, whose K is known, the
+    // same form holds with r_v = K_v (its acceleration increment is not an unknown: K_v - r_v = 0) and
+    // r_x = K_x - gamma h K_v.
     const Eigen::Index e = static_cast<Eigen::Index>(i);
-    const Eigen::Vector3d rv_f = e == 0 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(r_v.col(e - 1));
-    const Eigen::Vector3d rx_f = e == 0 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(r_x.col(e - 1));
+    const Eigen::Vector3d rv_f = e == 0 ? tow.v : Eigen::Vector3d(r_v.col(e - 1));
+    const Eigen::Vector3d rx_f = e == 0 ? Eigen::Vector3d(tow.x - gh * tow.v) : Eigen::Vector3d(r_x.col(e - 1));
     const Eigen::Vector3d rv_a = r_v.col(e), rx_a = r_x.col(e);
     const ElementTerms& M = inertia_[i];
     const Matrix6d& Kx = jacobians_[i].dh_dx;
@@ -69,7 +74,7 @@ void ImplicitStepper::solve(const std::vector<double>& r, std::vector<double>& K
   }
   K.resize(r.size());
   K_v_.resize(3, L.joints);
-  sweep_.solve(stage_, Eigen::Vector3d::Zero(), K_v_);
+  sweep_.solve(stage_, tow.v, K_v_);
   L.velocities(K) = K_v_;
   L.positions(K) = r_x + gh * K_v_;
   // The winch: [1, -gh; -gh a_L, 1 - gh a_R] (K_L, K_R) = (r_L, r_R).

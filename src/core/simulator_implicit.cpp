@@ -29,8 +29,8 @@ void Simulator::linearise()
     d_rate = (winchAcceleration(length, rate + dr) - winchAcceleration(length, rate - dr)) / (2.0 * dr);
   }
   const StateLayout L = layout();
-  implicit_.linearise(*model_, data_.geometry, data_, t_, ship_(t_), L.positions(y_), L.velocities(y_), solver_.terms(),
-                      multipliers_, d_length, d_rate);
+  implicit_.linearise(*model_, data_.geometry, data_, t_, ship_(t_), L.positions(y_), L.velocities(y_), accelerations_,
+                      solver_.terms(), multipliers_, d_length, d_rate);
 }
 
 double Simulator::errorNorm(const StateVector& error, const StateVector& y_next, double t_next) const
@@ -77,7 +77,9 @@ bool Simulator::stepImplicit(double t_end, double winch_step, StepReport& report
     implicit_.factor(h);
   // ROS2: W K1 = f(t, y); W K2 = f(t + h, y + h K1) - 2 K1; y + h (3/2 K1 + 1/2 K2).
   const size_t n = y_.size();
-  implicit_.solve(dydt_, k1_);
+  // The tow point's increments, K_t (v, a) at t: K_t = 1, then -1 (implicit_stepper.h).
+  const ShipEndState ship = ship_(t_);
+  implicit_.solve(dydt_, TowPointRates{ ship.v_W, ship.a_W }, k1_);
   stage_y_.resize(n);
   for (size_t i = 0; i < n; ++i)
     stage_y_[i] = y_[i] + h * k1_[i];
@@ -85,7 +87,7 @@ bool Simulator::stepImplicit(double t_end, double winch_step, StepReport& report
   derivative(t_ + h, stage_y_, stage_f_);
   for (size_t i = 0; i < n; ++i)
     stage_f_[i] -= 2.0 * k1_[i];
-  implicit_.solve(stage_f_, k2_);
+  implicit_.solve(stage_f_, TowPointRates{ -ship.v_W, -ship.a_W }, k2_);
   y_next_.resize(n);
   error_.resize(n);
   for (size_t i = 0; i < n; ++i)

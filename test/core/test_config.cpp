@@ -200,7 +200,9 @@ TEST(Config, ErrorsNameTheFullKeyPathTheValueAndTheRange)
   e = errorOf("vehicle: {elevator: {drag_table: {angles: [0, 1], values: [0.1, 0.2]}}}");
   EXPECT_NE(e.find("vehicle.elevator.drag_table: angles must run from 0 to pi/2"), std::string::npos) << e;
   e = errorOf("numerics: {stepper: euler}");
-  EXPECT_NE(e.find("numerics.stepper: 'euler' must be 'dopri5', 'rk4', 'implicit' or 'implicit_fixed'"), std::string::npos) << e;
+  EXPECT_NE(e.find("numerics.stepper: 'euler' must be 'dopri5', 'rk4', 'implicit' or 'implicit_fixed'"),
+            std::string::npos)
+      << e;
   e = errorOf("cable: 3");
   EXPECT_NE(e.find("cable: must be a mapping"), std::string::npos) << e;
   EXPECT_THROW(loadConfigFile("/nonexistent/tow_sim.yaml"), std::invalid_argument);

@@ -21,15 +21,20 @@ struct ElementJacobian
 //     the first segment, the seabed contact at the aft joint through the point's position and velocity
 //     (Seabed::contactJacobian);
 //   the end body: all its loads (hydrodynamics, fins, thrust, Munk and gyroscopic terms, buoyancy moment,
-//     contact), by forward differences over its four joint vectors x_f, x_a, v_f, v_a;
+//     contact) and its inertia's turning, by forward differences over its four joint vectors x_f, x_a,
+//     v_f, v_a;
 //   every element: the geometric stiffness of its tension T = max(-mu, 0) turning with the axis,
 //     -T/d (I - s s^T) on the relative displacement of its joints (compression is left out: it would
 //     soften N).
 // Left out (a W-method keeps its order with any matrix; only the step it can take changes): on cable
 // segments the drag's and the weight's dependence on the direction and the current profile's on depth;
-// on every element the inertia's dependence on the direction and the length constraint's velocity term.
+// on cable segments the inertia's dependence on the direction; on every element the length constraint's
+// dependence on the direction and its velocity term.
+// When `accelerations` (a_f, a_a at the state) is given, the end body's derivatives include its inertia
+// turning with its axis, -d(M)/dx (a_f, a_a): it matters while the body whips (a start from a line).
 void elementJacobian(const ChainModel& model, int e, double t, const ElementKinematics& k,
-                     const ChainGeometry& geometry, const ChainData& data, double mu, ElementJacobian& out);
+                     const ChainGeometry& geometry, const ChainData& data, double mu, ElementJacobian& out,
+                     const Vector6d* accelerations = nullptr);
 
 // The geometric stiffness term alone (added by elementJacobian).
 void addGeometricStiffness(const ElementKinematics& k, double mu, ElementJacobian& out);

@@ -10,8 +10,14 @@
 //   N_ff K_f + N_fa K_a - g_f = T_fwd - mu s,  N_af K_f + N_aa K_a - g_a = -T_aft + mu s,  s.(K_a - K_f) = c',
 //   N = M - gamma h D - (gamma h)^2 K,  g = M r_v + gamma h K r_x,  c' = s.(r_v,a - r_v,f),
 // (M the projected inertia, D and K the load derivatives of chain_jacobian.h), so ChainSweep solves them:
-// the matrix pass once per step size, a vector pass per stage. The tow point is prescribed (K = 0 there).
-// The winch's cable out and rate form their own 2 x 2 block.
+// the matrix pass once per step size, a vector pass per stage. The winch's cable out and rate form their
+// own 2 x 2 block.
+// The right-hand side depends on time through the tow point x_1, which moves as the ship says. The
+// method is applied to the autonomous system in (t, y): its stages then carry the time derivative of f,
+// W K_i = ... + gamma h K_t,i df/dt with K_t = 1 in the first stage and -1 in the second, and df/dt is
+// the response of the chain to the tow point moving at the ship's velocity and acceleration: the stage
+// takes the tow point's increments (K_t v, K_t a) as known joint values. Without them the tow point's
+// motion acts explicitly on the first element, the stiffest spring of a fine chain.
 #pragma once
 
 #include <Eigen/Core>
@@ -22,22 +28,32 @@
 
 namespace tow_sim
 {
+// The tow point's increments in a stage: position and velocity rows.
+struct TowPointRates
+{
+  Eigen::Vector3d x = Eigen::Vector3d::Zero();
+  Eigen::Vector3d v = Eigen::Vector3d::Zero();
+};
+
 class ImplicitStepper
 {
 public:
   static constexpr double kGamma = 1.7071067811865475;  // 1 + 1/sqrt(2)
 
-  // The linearisation at a state: `terms` and `multipliers` of a ChainSolver::solve at it (the projected
-  // inertia, the axes, the axial forces), its joints x, v (3 x (nu+1)), the tow point's motion, and the
+  // The linearisation at a state: `terms`, `multipliers` and accelerations a of a ChainSolver::solve at it
+  // (the projected inertia, the axes, the axial forces), its joints x, v (3 x (nu+1)), the tow point's
+  // motion, and the
   // winch's rate law's derivatives d(payout acceleration)/d(cable out) [1/s^2] and /d(rate) [1/s].
   void linearise(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data, double t,
                  const ShipEndState& ship, const Eigen::Ref<const Eigen::Matrix3Xd>& x,
-                 const Eigen::Ref<const Eigen::Matrix3Xd>& v, const std::vector<ElementTerms>& terms,
-                 const std::vector<double>& multipliers, double winch_d_length, double winch_d_rate);
+                 const Eigen::Ref<const Eigen::Matrix3Xd>& v, const Eigen::Ref<const Eigen::Matrix3Xd>& a,
+                 const std::vector<ElementTerms>& terms, const std::vector<double>& multipliers, double winch_d_length,
+                 double winch_d_rate);
   // The stage matrix for the step h [s] and its matrix pass (after linearise; again after each change of h).
   void factor(double h);
-  // K = (I - gamma h J)^-1 r for r laid out as StateLayout with as many joints as the linearisation.
-  void solve(const std::vector<double>& r, std::vector<double>& K);
+  // K = (I - gamma h J)^-1 (r + gamma h df/dt-part) for r laid out as StateLayout with as many joints as
+  // the linearisation, the tow point's increments `tow` known (position, velocity: K_t (v, a)).
+  void solve(const std::vector<double>& r, const TowPointRates& tow, std::vector<double>& K);
 
   double step() const { return h_; }  // [s] as factored
   int joints() const { return static_cast<int>(jacobians_.size()); }

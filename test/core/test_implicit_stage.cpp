@@ -1,0 +1,187 @@
+// The implicit stepper's stage solve (I - gamma h J) K = r in O(nu) must equal a dense solve of the same
+// equations written the other way round: J assembled explicitly as a 6(nu+1)+2 square matrix, its
+// acceleration rows from a dense KKT solve per column (the joint-space inertia built here from each
+// element's 6 x 6 body inertia, the length constraints, the load derivatives D and K of elementJacobian,
+// which test_chain_jacobian checks against central differences), then I - gamma h J factored with a full
+// pivot LU. Random states, nu = 1 .. 20, the vehicle in Approaches A, B and B + Munk, the winch paying
+// out, a seabed under part of the chain.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+#include <random>
+
+#include "core/random_chain.h"
+#include "tow_sim/core/chain_jacobian.h"
+#include "tow_sim/core/chain_solver.h"
+#include "tow_sim/core/implicit_stepper.h"
+#include "tow_sim/core/simulator.h"
+
+namespace tow_sim
+{
+namespace
+{
+using test::EndKind;
+using test::makeRandomCase;
+using test::RandomCase;
+
+Eigen::Matrix3d crossMatrix(const Eigen::Vector3d& r)
+{
+  Eigen::Matrix3d m;
+  m << 0.0, -r.z(), r.y(), r.z(), 0.0, -r.x(), -r.y(), r.x(), 0.0;
+  return m;
+}
+
+struct Linearisation
+{
+  double d_length = 0.0, d_rate = 0.0;  // the winch's rate law's derivatives (given, not computed)
+};
+
+// The dense J of the linearised chain: d/dt (x, v, L, R) = (v, a, R, a_w(L, R)) with
+// M a = K (x, x_tow) + D (v, v_tow) + G^T lambda, G a = 0 (M, G frozen at the state); its last six columns
+// are the chain's response to the tow point's position and velocity (x_tow, v_tow).
+using MatrixXld = Eigen::Matrix<long double, Eigen::Dynamic, Eigen::Dynamic>;
+using VectorXld = Eigen::Matrix<long double, Eigen::Dynamic, 1>;
+
+MatrixXld denseJacobian(const RandomCase& c, double t, const Linearisation& lin, const std::vector<double>& multipliers,
+                        const Eigen::Matrix3Xd& accelerations)
+{
+  const ChainModel& model = *c.model;
+  const int n = c.data.geometry.elementCount();  // = joints
+  const int dof = 3 * n;
+  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(dof, dof), D = M, K = M;
+  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(n, dof);
+  Eigen::Matrix3d K_tow = Eigen::Matrix3d::Zero(), D_tow = K_tow;  // joint x_2's load on the tow point's motion
+  const Eigen::Matrix3d I3 = Eigen::Matrix3d::Identity();
+  for (int e = 0; e < n; ++e)
+  {
+    const Eigen::Vector3d x_f = e == 0 ? c.ship.p_W : Eigen::Vector3d(c.x.col(e - 1));
+    const Eigen::Vector3d v_f = e == 0 ? c.ship.v_W : Eigen::Vector3d(c.v.col(e - 1));
+    const ElementKinematics k = ElementKinematics::fromJoints(x_f, c.x.col(e), v_f, c.v.col(e));
+    BodyDynamics body;
+    model.elementDynamics(e, t, k, c.data.geometry, c.data, body);
+    // (a_G, dw/dt) = P (a_f, a_a): a_G = (1-g) a_f + g a_a, dw/dt = s x (a_a - a_f) / l.
+    const double g = body.cg_fraction;
+    Matrix6d P;
+    P << (1.0 - g) * I3, g * I3, -crossMatrix(k.s) / k.length, crossMatrix(k.s) / k.length;
+    const Matrix6d M_e = P.transpose() * body.mass * P;
+    ElementJacobian jac;
+    Vector6d a_joints;
+    a_joints << (e == 0 ? c.ship.a_W : Eigen::Vector3d(accelerations.col(e - 1))), accelerations.col(e);
+    elementJacobian(model, e, t, k, c.data.geometry, c.data, multipliers[e], jac, &a_joints);
+    // Columns/rows of the element's two joints; the forward one of element 0 is the tow point (no unknown).
+    const int cols[2] = { e == 0 ? -1 : 3 * (e - 1), 3 * e };
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2; ++b)
+        if (cols[a] >= 0 && cols[b] >= 0)
+        {
+          M.block<3, 3>(cols[a], cols[b]) += M_e.block<3, 3>(3 * a, 3 * b);
+          D.block<3, 3>(cols[a], cols[b]) += jac.dh_dv.block<3, 3>(3 * a, 3 * b);
+          K.block<3, 3>(cols[a], cols[b]) += jac.dh_dx.block<3, 3>(3 * a, 3 * b);
+        }
+    if (e == 0)
+    {
+      K_tow = jac.dh_dx.block<3, 3>(3, 0);
+      D_tow = jac.dh_dv.block<3, 3>(3, 0);
+    }
+    G.block<1, 3>(e, 3 * e) = k.s.transpose();
+    if (e > 0)
+      G.block<1, 3>(e, 3 * (e - 1)) = -k.s.transpose();
+  }
+  // a = A_x x + A_v v from the KKT system [M -G^T; G 0] (a, lambda) = (K x + D v, 0).
+  Eigen::MatrixXd kkt = Eigen::MatrixXd::Zero(dof + n, dof + n);
+  kkt.topLeftCorner(dof, dof) = M;
+  kkt.topRightCorner(dof, n) = -G.transpose();
+  kkt.bottomLeftCorner(n, dof) = G;
+  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(dof + n, 2 * dof + 6);
+  rhs.topLeftCorner(dof, dof) = K;
+  rhs.block(0, dof, dof, dof) = D;
+  rhs.block<3, 3>(0, 2 * dof) = K_tow;
+  rhs.block<3, 3>(0, 2 * dof + 3) = D_tow;
+  // In long double: J has entries up to M^-1 K, and the reference must stay well inside 1e-8 at large h.
+  const MatrixXld sol = kkt.cast<long double>().fullPivLu().solve(rhs.cast<long double>());
+  const int size = 2 * dof + 2;
+  MatrixXld J = MatrixXld::Zero(size, size + 6);
+  J.block(0, dof, dof, dof).setIdentity();
+  J.block(dof, 0, dof, 2 * dof) = sol.topRows(dof).leftCols(2 * dof);
+  J.block(dof, size, dof, 6) = sol.topRows(dof).rightCols(6);
+  J(2 * dof, 2 * dof + 1) = 1.0;
+  J(2 * dof + 1, 2 * dof) = lin.d_length;
+  J(2 * dof + 1, 2 * dof + 1) = lin.d_rate;
+  return J;
+}
+
+// One random case: the O(nu) stage solve against the dense one for several step sizes and right-hand sides.
+void expectStageMatchesDense(const RandomCase& c, double t, std::mt19937& rng, const std::string& what)
+{
+  const int n = c.data.geometry.elementCount();
+  ChainSolver solver;
+  Eigen::Matrix3Xd a(3, n);
+  std::vector<double> multipliers;
+  solver.solve(*c.model, c.data.geometry, c.data, t, c.ship, c.x, c.v, a, nullptr, &multipliers);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const Linearisation lin{ -0.5 + u(rng), -2.0 + u(rng) };
+  ImplicitStepper stepper;
+  stepper.linearise(*c.model, c.data.geometry, c.data, t, c.ship, c.x, c.v, a, solver.terms(), multipliers,
+                    lin.d_length, lin.d_rate);
+  const MatrixXld J = denseJacobian(c, t, lin, multipliers, a);
+  const StateLayout layout{ n };
+  for (double h : { 1e-3, 0.05, 0.5, 2.0 })
+  {
+    stepper.factor(h);
+    // W over the chain's own state (the tow point's rows are not solved for).
+    const int size = static_cast<int>(layout.size());
+    const MatrixXld W = MatrixXld::Identity(size, size) -
+                        static_cast<long double>(ImplicitStepper::kGamma * h) * J.topLeftCorner(size, size);
+    const auto lu = W.fullPivLu();
+    for (int trial = 0; trial < 2; ++trial)
+    {
+      std::vector<double> r(layout.size()), K;
+      for (double& value : r)
+        value = u(rng);
+      // The tow point's increments are known: they move to the right-hand side.
+      const TowPointRates tow{ test::randomVector(rng, 1.0), test::randomVector(rng, 1.0) };
+      stepper.solve(r, tow, K);
+      VectorXld K_tow(6);
+      K_tow << tow.x.cast<long double>(), tow.v.cast<long double>();
+      const VectorXld rhs =
+          Eigen::Map<const Eigen::VectorXd>(r.data(), r.size()).cast<long double>() +
+          static_cast<long double>(ImplicitStepper::kGamma * h) * J.rightCols(6).topRows(r.size()) * K_tow;
+      const Eigen::VectorXd reference = lu.solve(rhs).cast<double>();
+      const Eigen::Map<const Eigen::VectorXd> value(K.data(), K.size());
+      const double error = (value - reference).cwiseAbs().maxCoeff() / reference.cwiseAbs().maxCoeff();
+      EXPECT_LT(error, 1e-8) << what << ", nu = " << n - 1 << ", h = " << h;
+    }
+  }
+}
+
+TEST(ImplicitStage, RandomChainsWithARigidEndMatchTheDenseSolve)
+{
+  std::mt19937 rng(2024);
+  for (int segments = 1; segments <= 20; ++segments)
+    for (int trial = 0; trial < 3; ++trial)
+      expectStageMatchesDense(makeRandomCase(segments, rng), 0.0, rng, "rigid end");
+}
+
+TEST(ImplicitStage, TheVehicleInApproachesAAndBAndWithMunkTerms)
+{
+  std::mt19937 rng(99);
+  for (EndKind kind : { EndKind::kVehicleA, EndKind::kVehicleB, EndKind::kVehicleBMunk })
+    for (int segments = 1; segments <= 20; ++segments)
+      expectStageMatchesDense(makeRandomCase(segments, rng, kind), 0.4, rng,
+                              "vehicle kind " + std::to_string(static_cast<int>(kind)));
+}
+
+TEST(ImplicitStage, WithTheWinchPayingOutAndASeabed)
+{
+  std::mt19937 rng(31337);
+  for (EndKind kind : { EndKind::kRigid, EndKind::kVehicleB })
+    for (int segments = 1; segments <= 20; ++segments)
+    {
+      expectStageMatchesDense(makeRandomCase(segments, rng, kind, true), 0.2, rng, "winch");
+      expectStageMatchesDense(makeRandomCase(segments, rng, kind, false, true), 0.2, rng, "seabed");
+    }
+}
+
+}  // namespace
+}  // namespace tow_sim

@@ -1,0 +1,254 @@
+// The implicit stepper (numerics.stepper: implicit / implicit_fixed) against answers that do not come from
+// it: tight dopri5 on the shipped scenarios, its own order of convergence, the equilibrium solver's
+// steady tow, and a large fixed step on a fine cable.
+//
+// The accuracy test runs at nu = 100 here; TOW_SIM_ACCURACY_SEGMENTS (a comma-separated list) sets others
+// (`make accuracy` runs 100 and 1000: about half an hour, most of it the dopri5 references).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "tow_sim/core/tow_run.h"
+#include "tow_sim/scenario/scenario.h"
+#include "tow_sim/scenario/ship_path.h"
+
+namespace tow_sim
+{
+namespace
+{
+Scenario shipped(const std::string& name)
+{
+  return loadScenarioFile(std::string(TOW_SIM_SOURCE_DIR) + "/scenarios/" + name + ".yaml");
+}
+
+NumericsParams dopri5(double tol)
+{
+  NumericsParams n;
+  n.stepper = StepperType::kDopri5;
+  n.abs_tol = tol;
+  n.rel_tol = tol;
+  return n;
+}
+
+NumericsParams implicitAdaptive()
+{
+  NumericsParams n;
+  n.stepper = StepperType::kImplicit;
+  return n;
+}
+
+NumericsParams implicitFixed(double h)
+{
+  NumericsParams n;
+  n.stepper = StepperType::kImplicitFixed;
+  n.fixed_step = h;
+  return n;
+}
+
+// The scenario's outputs with the cable's segments and the numerics replaced (and the ship, when given).
+std::vector<TowSnapshot> run(Scenario sc, int segments, const NumericsParams& numerics,
+                             std::shared_ptr<ShipHistory> ship = nullptr)
+{
+  sc.config.cable.segments = segments;
+  sc.config.numerics = numerics;
+  if (!ship)
+    ship = std::make_shared<ShipHistory>(buildShipPath(sc));
+  TowRun tow(sc.config, ship, sc.initial);
+  tow.schedule(sc.commands);
+  if (sc.autopilot.enabled)
+    tow.setAutopilot(sc.autopilot);
+  tow.start(0.0);
+  std::vector<TowSnapshot> out;
+  const long outputs = std::lround(sc.duration / sc.output_interval);
+  for (long i = 0; i <= outputs; ++i)
+  {
+    tow.advanceTo(std::min(sc.duration, i * sc.output_interval));
+    out.push_back(tow.snapshot());
+  }
+  return out;
+}
+
+struct Deviation
+{
+  double depth = 0.0, layback = 0.0, tension_ship = 0.0, tension_vehicle = 0.0;  // [-] relative
+  double diversion = 0.0;                                                        // [m]
+};
+
+Deviation worstDeviation(const std::vector<TowSnapshot>& a, const std::vector<TowSnapshot>& ref)
+{
+  Deviation d;
+  auto rel = [](double x, double y) { return std::abs(x - y) / std::abs(y); };
+  for (size_t i = 0; i < std::min(a.size(), ref.size()); ++i)
+  {
+    d.depth = std::max(d.depth, rel(a[i].depth, ref[i].depth));
+    d.layback = std::max(d.layback, rel(a[i].layback, ref[i].layback));
+    d.tension_ship = std::max(d.tension_ship, rel(a[i].tension_ship, ref[i].tension_ship));
+    d.tension_vehicle = std::max(d.tension_vehicle, rel(a[i].tension_vehicle, ref[i].tension_vehicle));
+    d.diversion = std::max(d.diversion, std::abs(a[i].diversion.offset - ref[i].diversion.offset));
+  }
+  return d;
+}
+
+std::vector<int> accuracySegments()
+{
+  std::vector<int> out;
+  const char* env = std::getenv("TOW_SIM_ACCURACY_SEGMENTS");
+  std::stringstream list(env && *env ? env : "100");
+  for (std::string item; std::getline(list, item, ',');)
+    out.push_back(std::stoi(item));
+  return out;
+}
+
+// The bar at the default tolerances: 0.5 % in depth, layback and both tensions, 1 m in diversion,
+// at every output time, against dopri5 at 1e-10.
+TEST(ImplicitStepping, ShippedScenariosAgreeWithTightDopri5)
+{
+  for (int segments : accuracySegments())
+    for (const char* name : { "turn_180", "zigzag", "speed_change", "report_elevator_step" })
+    {
+      const Scenario sc = shipped(name);
+      const Deviation d = worstDeviation(run(sc, segments, implicitAdaptive()), run(sc, segments, dopri5(1e-10)));
+      std::printf(
+          "implicit vs dopri5 1e-10, %s, nu = %d: depth %.1e, layback %.1e, tension ship %.1e, "
+          "vehicle %.1e, diversion %.3f m\n",
+          name, segments, d.depth, d.layback, d.tension_ship, d.tension_vehicle, d.diversion);
+      EXPECT_LT(d.depth, 5e-3) << name << ", nu = " << segments;
+      EXPECT_LT(d.layback, 5e-3) << name << ", nu = " << segments;
+      EXPECT_LT(d.tension_ship, 5e-3) << name << ", nu = " << segments;
+      EXPECT_LT(d.tension_vehicle, 5e-3) << name << ", nu = " << segments;
+      EXPECT_LT(d.diversion, 1.0) << name << ", nu = " << segments;
+    }
+}
+
+// A ship along +x slowing from 2.5 to 1 m/s between t = 60 and 120 s on a quintic smoothstep: its
+// acceleration and jerk are continuous (the scripted ship's speed ramp has corners, and a step across a
+// jump of the input is first order whatever the method: the tow tension follows the ship's acceleration).
+std::shared_ptr<ShipHistory> smoothSpeedChange(double duration)
+{
+  auto ship = std::make_shared<ShipHistory>(1.0, 100000);
+  const double dt = 0.05;
+  double x = 0.0;
+  auto speed = [](double t)
+  {
+    const double tau = std::clamp((t - 60.0) / 60.0, 0.0, 1.0);
+    return 2.5 - 1.5 * tau * tau * tau * (10.0 - 15.0 * tau + 6.0 * tau * tau);
+  };
+  for (long i = 0; i * dt <= duration + 1.0; ++i)
+  {
+    const double t = i * dt;
+    ShipPose pose;
+    pose.x = x;
+    pose.speed = speed(t);
+    // The tow point 20 m astern of the reference point (the scenario's).
+    ship->add(t, Eigen::Vector3d(x - 20.0, 0.0, 0.0), Eigen::Vector3d(speed(t), 0.0, 0.0), pose);
+    // Simpson's rule: the position to well below the errors measured.
+    x += dt / 6.0 * (speed(t) + 4.0 * speed(t + 0.5 * dt) + speed(t + dt));
+  }
+  return ship;
+}
+
+// Second order: halving a fixed step divides the error by about 4 (the speed-change scenario's cable and
+// vehicle, with the smooth speed change above).
+TEST(ImplicitStepping, FixedStepsConvergeAtSecondOrder)
+{
+  Scenario sc = shipped("speed_change");
+  sc.duration = 300.0;
+  sc.output_interval = 0.8;  // a multiple of every step
+  const auto ship = smoothSpeedChange(sc.duration);
+  const std::vector<TowSnapshot> ref = run(sc, 50, dopri5(1e-10), ship);
+  std::vector<double> depth, tension;
+  for (double h : { 0.4, 0.2, 0.1, 0.05 })
+  {
+    const std::vector<TowSnapshot> s = run(sc, 50, implicitFixed(h), ship);
+    double e_depth = 0.0, e_tension = 0.0, t_depth = 0.0, t_tension = 0.0;
+    for (size_t i = 0; i < ref.size(); ++i)
+    {
+      if (std::abs(s[i].depth - ref[i].depth) > e_depth)
+      {
+        e_depth = std::abs(s[i].depth - ref[i].depth);
+        t_depth = ref[i].t;
+      }
+      if (std::abs(s[i].tension_ship - ref[i].tension_ship) > e_tension)
+      {
+        e_tension = std::abs(s[i].tension_ship - ref[i].tension_ship);
+        t_tension = ref[i].t;
+      }
+    }
+    std::printf("h = %.2f s: depth error %.3e m (t = %.1f s), ship tension error %.3e N (t = %.1f s)\n", h, e_depth,
+                t_depth, e_tension, t_tension);
+    depth.push_back(e_depth);
+    tension.push_back(e_tension);
+  }
+  for (size_t i = 1; i < depth.size(); ++i)
+  {
+    const double order_depth = std::log2(depth[i - 1] / depth[i]);
+    const double order_tension = std::log2(tension[i - 1] / tension[i]);
+    std::printf("observed order: depth %.2f, ship tension %.2f\n", order_depth, order_tension);
+    EXPECT_GT(order_depth, 1.7);
+    EXPECT_LT(order_depth, 2.5);
+    // The tension is the chain's algebraic variable (a multiplier of the length constraints), where
+    // Rosenbrock methods show the stiff order reduction: measured 1.2, 1.35, 1.5 per halving, rising
+    // toward 2 as h omega_max falls.
+    EXPECT_GT(order_tension, 1.1);
+    EXPECT_LT(order_tension, 2.5);
+  }
+  EXPECT_GT(std::log2(tension[2] / tension[3]), std::log2(tension[0] / tension[1]));
+}
+
+// L-stability where the explicit steppers would need h < 0.01 s: nu = 1000 at 2 m/s with 0.5 s steps
+// through the report's elevator step (README, Numerics, for the limits of large fixed steps in turns).
+TEST(ImplicitStepping, AFineCableWithHalfSecondStepsStaysBoundedAndKeepsItsLengths)
+{
+  Scenario sc = shipped("report_elevator_step");
+  sc.duration = 600.0;
+  const double segment = sc.config.cable.length / 1000.0;
+  const std::vector<TowSnapshot> s = run(sc, 1000, implicitFixed(0.5));
+  const TowSnapshot& first = s.front();
+  double largest_before_projection = 0.0;
+  for (const TowSnapshot& o : s)
+  {
+    ASSERT_TRUE(std::isfinite(o.tension_ship) && std::isfinite(o.depth)) << "t = " << o.t;
+    ASSERT_LT(o.tension_ship, 2.0 * first.tension_ship) << "t = " << o.t;
+    ASSERT_GT(o.depth, 0.5 * first.depth) << "t = " << o.t;
+    ASSERT_LT(o.depth, 1.5 * first.depth) << "t = " << o.t;
+    double worst = 0.0;
+    for (int j = 1; j < o.segments; ++j)  // the cable segments behind the first (whose length the winch sets)
+      worst = std::max(worst, std::abs((o.joints.col(j + 1) - o.joints.col(j)).norm() - segment) / segment);
+    ASSERT_LT(worst, 1e-10) << "t = " << o.t;
+    largest_before_projection = std::max(largest_before_projection, o.max_length_error);
+  }
+  std::printf("nu = 1000, h = 0.5 s: largest length error before projection %.2e\n", largest_before_projection);
+  EXPECT_LT(largest_before_projection, 0.05);
+  // The fins' step pitched the vehicle by a quarter radian: the run did respond.
+  EXPECT_GT(s.back().pitch - first.pitch, 0.2);
+}
+
+// From a straight line, a steady tow settles onto the equilibrium solver's shape.
+TEST(ImplicitStepping, ASteadyTowSettlesOntoTheEquilibrium)
+{
+  Scenario sc = shipped("report_elevator_step");
+  sc.commands.clear();
+  sc.duration = 3000.0;
+  sc.output_interval = 3000.0;
+  const TowSnapshot equilibrium = run(sc, 50, implicitAdaptive()).front();
+  sc.initial.type = InitialShape::Type::kLine;
+  const std::vector<TowSnapshot> s = run(sc, 50, implicitAdaptive());
+  const TowSnapshot& settled = s.back();
+  // The shapes relative to the tow point (the ship has moved 6 km).
+  const Eigen::Matrix3Xd a = settled.joints.colwise() - settled.joints.col(0);
+  const Eigen::Matrix3Xd b = equilibrium.joints.colwise() - equilibrium.joints.col(0);
+  const double error = (a - b).cwiseAbs().maxCoeff() / b.cwiseAbs().maxCoeff();
+  std::printf("settled shape vs equilibrium: %.2e relative; tension %.6f vs %.6f N\n", error, settled.tension_ship,
+              equilibrium.tension_ship);
+  EXPECT_LT(error, 1e-6);
+  EXPECT_NEAR(settled.tension_ship, equilibrium.tension_ship, 1e-6 * equilibrium.tension_ship);
+}
+
+}  // namespace
+}  // namespace tow_sim
