@@ -135,9 +135,9 @@ void TowSimNode::printStatus()
   }
   ROS_INFO(
       "t %7.1f s | ship %4.2f m/s | vehicle depth %6.1f m, diversion %6.2f m | tension ship %7.0f N, "
-      "vehicle %6.0f N",
+      "vehicle %6.0f N | physics %4.1f %% of a core, %.0f steps/s",
       last_.t, last_.tow_point.v_W.norm(), last_.depth, last_.diversion.offset, last_.tension_ship,
-      last_.tension_vehicle);
+      last_.tension_vehicle, 100.0 * physics_load_, steps_per_second_);
 }
 
 void TowSimNode::start(double t)
@@ -342,6 +342,7 @@ void TowSimNode::physicsTick(const ros::TimerEvent&)
   {
     const StepReport report = run_.advanceTo(target);
     rejected_steps_ += report.rejected;
+    physics_steps_ += report.steps;
   }
   catch (const std::runtime_error& e)
   {
@@ -349,6 +350,7 @@ void TowSimNode::physicsTick(const ros::TimerEvent&)
   }
   ship_->dropBefore(run_.time());  // the simulation never looks back: the history stays short
   const double wall = (ros::WallTime::now() - wall_start).toSec();
+  physics_wall_ += wall;
   if (wall > 0.0)
     realtime_factor_ = 0.9 * realtime_factor_ + 0.1 * ((run_.time() - t0) / wall);
 }
@@ -440,6 +442,18 @@ void TowSimNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
   else
     status.summary(DiagnosticStatus::OK, "running");
   status.add("real-time factor", realtime_factor_);
+  // The share of one core the integration took, and its steps, since the previous report.
+  const double wall_now = ros::WallTime::now().toSec();
+  if (last_diagnose_wall_ > 0.0 && wall_now > last_diagnose_wall_)
+  {
+    physics_load_ = physics_wall_ / (wall_now - last_diagnose_wall_);
+    steps_per_second_ = static_cast<double>(physics_steps_) / (wall_now - last_diagnose_wall_);
+  }
+  last_diagnose_wall_ = wall_now;
+  physics_wall_ = 0.0;
+  physics_steps_ = 0;
+  status.add("physics load [share of one core]", physics_load_);
+  status.add("steps per wall second", steps_per_second_);
   status.add("lag behind the clock [s]", lag_);
   status.add("odometry age [s]", last_odom_wall_ > 0.0 ? ros::WallTime::now().toSec() - last_odom_wall_ : -1.0);
   status.add("rejected steps", rejected_steps_);

@@ -82,6 +82,11 @@ private:
   // Diagnostics.
   double realtime_factor_ = 0.0;
   double lag_ = 0.0;
+  double physics_wall_ = 0.0;        // [s] wall time spent integrating since the last diagnostics report
+  uint64_t physics_steps_ = 0;       // accepted steps since the last diagnostics report
+  double last_diagnose_wall_ = 0.0;  // [s] wall time of the last diagnostics report
+  double physics_load_ = 0.0;        // [-] share of one core spent integrating, over the last report's interval
+  double steps_per_second_ = 0.0;    // [1/s] accepted steps per wall second, over the same interval
   uint64_t rejected_steps_ = 0;
   uint64_t rejected_messages_ = 0;
   uint64_t restarts_ = 0;

@@ -1,0 +1,188 @@
+// Google Benchmark: simulated seconds per wall second of the whole run (TowRun with the example vehicle)
+// for each stepper, as the cable is cut finer (issue #12):
+//   steady   a 500 m cable towed at 2 m/s in a straight line, from its equilibrium;
+//   turn     the same ship turning 180 degrees to port on a 200 m radius from t = 0;
+//   deep     6000 m of 0.04 m, 6 kg/m cable at 1.5 m/s (steady), nu = 1000.
+// Steppers: dopri5 (default tolerances), rk4 at its largest stable fixed step (from 2.5 / omega_max, the
+// zig-zag mode omega_max^2 = 12 T / (m_eff d^2) at the tow point's tension, shortened until 60 s of the run
+// go through), implicit (default tolerances).
+// Counter `realtime`: simulated seconds per wall second. Each iteration advances `chunk` simulated
+// seconds; the first 2 s (start-up) are outside the timing.
+#include <benchmark/benchmark.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include "tow_sim/core/tow_run.h"
+
+namespace
+{
+using namespace tow_sim;
+
+enum class Path
+{
+  kStraight,
+  kTurn
+};
+
+// The ship's reference point at speed U along +x, or turning to port on radius R from t = 0; the tow
+// point 20 m astern. Samples every 0.1 s for `duration`.
+std::shared_ptr<ShipHistory> shipPath(Path path, double speed, double duration)
+{
+  const double radius = 200.0, astern = 20.0;
+  auto ship = std::make_shared<ShipHistory>(1.0, static_cast<size_t>(duration / 0.1) + 10);
+  for (long i = 0; i * 0.1 <= duration; ++i)
+  {
+    const double t = i * 0.1;
+    ShipPose pose;
+    double rate = 0.0;
+    if (path == Path::kTurn && t * speed / radius < M_PI)
+    {
+      rate = speed / radius;
+      pose.heading = rate * t;
+      pose.x = radius * std::sin(pose.heading);
+      pose.y = radius * (1.0 - std::cos(pose.heading));
+    }
+    else if (path == Path::kTurn)
+    {
+      const double after = t - M_PI * radius / speed;
+      pose.heading = M_PI;
+      pose.x = -speed * after;
+      pose.y = 2.0 * radius;
+    }
+    else
+      pose.x = speed * t;
+    pose.speed = speed;
+    const Eigen::Vector3d along(std::cos(pose.heading), std::sin(pose.heading), 0.0);
+    const Eigen::Vector3d port(-std::sin(pose.heading), std::cos(pose.heading), 0.0);
+    const Eigen::Vector3d p = Eigen::Vector3d(pose.x, pose.y, 0.0) - astern * along;
+    const Eigen::Vector3d v = speed * along - astern * rate * port;
+    ship->add(t, p, v, pose);
+  }
+  return ship;
+}
+
+SimulationConfig config(int segments, bool deep)
+{
+  SimulationConfig c;
+  c.cable.segments = segments;
+  c.cable.length = deep ? 6000.0 : 500.0;
+  if (deep)
+  {
+    c.cable.diameter = 0.04;
+    c.cable.mass_per_length = 6.0;
+  }
+  return c;
+}
+
+// rk4's largest stable step for the cable at the tow point's tension [N].
+double rk4Step(const SimulationConfig& c, double tension)
+{
+  const double d = c.cable.segmentLength();
+  const double m = c.cable.mass_per_length + c.cable.added_mass_coefficient * c.environment.water_density * M_PI *
+                                                 c.cable.diameter * c.cable.diameter / 4.0;
+  const double omega = std::sqrt(12.0 * tension / (m * d * d));
+  return std::min(1.0, 2.5 / omega);
+}
+
+void BM_Tow(benchmark::State& state, Path path, bool deep, StepperType stepper, int segments, double chunk)
+{
+  SimulationConfig c = config(segments, deep);
+  const double speed = deep ? 1.5 : 2.0;
+  const double duration = 12.0 + chunk * 6.0;  // every iteration (at most 5) and a margin
+  if (stepper == StepperType::kRk4)
+  {
+    // From the zig-zag mode's limit at the equilibrium's tension, shortened by 0.8 until 60 s of the
+    // run go through (other modes, the vehicle's, can bind first on coarse cables).
+    SimulationConfig probe_config = c;
+    probe_config.numerics.stepper = StepperType::kRk4;
+    TowRun tension(c, shipPath(path, speed, 10.0));
+    tension.start(0.0);
+    probe_config.numerics.fixed_step = rk4Step(c, tension.snapshot().tension_ship);
+    for (bool stable = false; !stable;)
+    {
+      try
+      {
+        TowRun probe(probe_config, shipPath(path, speed, 70.0));
+        probe.start(0.0);
+        probe.advanceTo(60.0);  // longer than the timed run
+        stable = true;
+      }
+      catch (const std::exception&)
+      {
+        probe_config.numerics.fixed_step *= 0.8;
+      }
+    }
+    c.numerics.fixed_step = probe_config.numerics.fixed_step;
+    state.counters["step_ms"] = 1e3 * c.numerics.fixed_step;
+  }
+  c.numerics.stepper = stepper;
+  TowRun run(c, shipPath(path, speed, duration));
+  run.start(0.0);
+  run.advanceTo(2.0);
+  double simulated = 0.0;
+  for (auto _ : state)
+  {
+    try
+    {
+      run.advanceTo(run.time() + chunk);
+    }
+    catch (const std::exception& e)
+    {
+      state.SkipWithError(e.what());
+      break;
+    }
+    simulated += chunk;
+  }
+  state.counters["realtime"] = benchmark::Counter(simulated, benchmark::Counter::kIsRate);
+}
+
+const char* name(StepperType s)
+{
+  switch (s)
+  {
+    case StepperType::kDopri5:
+      return "dopri5";
+    case StepperType::kRk4:
+      return "rk4";
+    case StepperType::kImplicit:
+      return "implicit";
+    default:
+      return "implicit_fixed";
+  }
+}
+
+void registerAll()
+{
+  for (Path path : { Path::kStraight, Path::kTurn })
+    for (int segments : { 50, 100, 200, 1000, 2000 })
+      for (StepperType stepper : { StepperType::kDopri5, StepperType::kRk4, StepperType::kImplicit })
+      {
+        // Enough simulated time per iteration to time, little enough for the explicit steppers at nu = 2000.
+        const bool slow = stepper != StepperType::kImplicit && segments >= 1000;
+        const double chunk = slow ? 1.0 : 10.0;
+        const std::string label = std::string(path == Path::kTurn ? "turn" : "steady") + "/" + name(stepper) +
+                                  "/nu:" + std::to_string(segments);
+        benchmark::RegisterBenchmark(label.c_str(), BM_Tow, path, false, stepper, segments, chunk)
+            ->Iterations(slow ? 3 : 5)
+            ->Unit(benchmark::kMillisecond);
+      }
+  for (StepperType stepper : { StepperType::kDopri5, StepperType::kRk4, StepperType::kImplicit })
+    benchmark::RegisterBenchmark((std::string("deep6km/") + name(stepper) + "/nu:1000").c_str(), BM_Tow,
+                                 Path::kStraight, true, stepper, 1000, 10.0)
+        ->Iterations(3)
+        ->Unit(benchmark::kMillisecond);
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  registerAll();
+  benchmark::Initialize(&argc, argv);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
