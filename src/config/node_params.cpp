@@ -20,7 +20,8 @@ const ParamTable<NodeParams>& nodeParams()
           .text("world_frame", &N::world_frame, "non-empty", "frame of ship/odom, current and every output")
           .text("vehicle_frame", &N::vehicle_frame, "≠ world_frame", "tf child frame of the vehicle CG")
           .vector3("tow_point", &N::tow_point_S, "m", -1000.0, 1000.0, "tow point in the ship frame (FLU)")
-          .number("physics_rate", &N::physics_rate, "Hz", 1.0, 1000.0, kClosed, "integration ticks")
+          .number("physics_rate", &N::physics_rate, "Hz", 1.0, 1000.0, kClosed,
+                  "integration ticks: dopri5 and rk4 end a step at each, the implicit steppers take their own")
           .number("publish_rate", &N::publish_rate, "Hz", 0.1, 100.0, kClosed,
                   "state, markers, odometry, fin loads, tf")
           .number("odom_delay", &N::odom_delay, "s", 0.0, 10.0, kClosed,

@@ -9,6 +9,14 @@
 
 namespace tow_sim
 {
+double Simulator::nextStep() const
+{
+  const NumericsParams& num = model_->numerics();
+  if (num.stepper == StepperType::kRk4 || num.stepper == StepperType::kImplicitFixed)
+    return num.fixed_step;
+  return std::min(dt_, num.max_step);
+}
+
 bool Simulator::implicit() const
 {
   const StepperType s = model_->numerics().stepper;

@@ -69,7 +69,9 @@ TowSimNode::TowSimNode(ros::NodeHandle nh, ros::NodeHandle pnh)
       params_(ros_conv::readPrivateParams<NodeParams>(pnh, nodeParams(), validate)),
       config_(readConfig(pnh)),
       ship_(std::make_shared<ShipHistory>(params_.max_extrapolation, kTrackCapacity)),
-      run_(config_, ship_, initialShape(params_))
+      run_(config_, ship_, initialShape(params_)),
+      whole_steps_(config_.numerics.stepper == StepperType::kImplicit ||
+                   config_.numerics.stepper == StepperType::kImplicitFixed)
 {
   odometry_limits_.world_frame = params_.world_frame;
   odometry_limits_.tow_point_S = params_.tow_point_S;
@@ -147,6 +149,7 @@ void TowSimNode::start(double t)
     ROS_WARN_THROTTLE(5.0, "tow_sim: %s", warning.c_str());
   started_ = true;
   have_last_ = false;  // the status line waits for this run's first output
+  have_after_ = have_steps_ = false;
 }
 
 void TowSimNode::onOdometry(const nav_msgs::Odometry::ConstPtr& msg)
@@ -331,11 +334,23 @@ void TowSimNode::physicsTick(const ros::TimerEvent&)
   if (holding_)
     ROS_WARN_THROTTLE(5.0, "tow_sim: ship odometry is %.1f s old: holding the simulation until it resumes",
                       wanted - ship_->newestTime());
-  // Bounded work per tick, so callbacks are never starved; the lag shows in diagnostics.
-  const double target = std::min({ wanted, available, run_.time() + 0.5 });
+  // Bounded work per tick, so callbacks are never starved; the lag shows in diagnostics. An implicit
+  // stepper goes on in its own steps, up to one past the clock (its outputs are interpolated).
   lag_ = wanted - run_.time();
+  if (wanted <= run_.time())
+    return;
+  const double step = whole_steps_ ? run_.nextStep() : 0.0;
+  const double target =
+      std::min({ std::max(wanted, run_.time() + step), available, run_.time() + std::max(0.5, step) });
   if (target <= run_.time())
     return;
+  integrateTo(target);
+}
+
+void TowSimNode::integrateTo(double target)
+{
+  if (whole_steps_ && !have_after_)
+    recordStep();  // the step's start
   const ros::WallTime wall_start = ros::WallTime::now();
   const double t0 = run_.time();
   try
@@ -348,11 +363,30 @@ void TowSimNode::physicsTick(const ros::TimerEvent&)
   {
     restartAfterDivergence(e.what());
   }
+  if (whole_steps_)
+    recordStep();
   ship_->dropBefore(run_.time());  // the simulation never looks back: the history stays short
   const double wall = (ros::WallTime::now() - wall_start).toSec();
   physics_wall_ += wall;
   if (wall > 0.0)
     realtime_factor_ = 0.9 * realtime_factor_ + 0.1 * ((run_.time() - t0) / wall);
+}
+
+void TowSimNode::recordStep()
+{
+  try
+  {
+    TowSnapshot now = run_.snapshot();
+    have_steps_ = have_after_;
+    if (have_after_)
+      before_ = std::move(after_);
+    after_ = std::move(now);
+    have_after_ = true;
+  }
+  catch (const std::runtime_error&)
+  {
+    have_after_ = have_steps_ = false;  // publishTick reports it
+  }
 }
 
 void TowSimNode::restartAfterDivergence(const std::string& why)
@@ -394,7 +428,10 @@ void TowSimNode::publishTick(const ros::TimerEvent&)
   TowSnapshot snapshot;
   try
   {
-    snapshot = run_.snapshot();
+    if (whole_steps_ && have_steps_)
+      snapshot = interpolate(before_, after_, relative(ros::Time::now()) - params_.odom_delay);
+    else
+      snapshot = run_.snapshot();
   }
   catch (const std::runtime_error& e)
   {

@@ -111,5 +111,43 @@ TEST(TowRun, RefusesATargetThatIsNotFiniteOrInThePastAndOutputsBeforeTheStart)
   EXPECT_NO_THROW(run.snapshot());
 }
 
+// The node publishes between whole steps of the implicit stepper by interpolating two snapshots.
+TEST(TowRun, SnapshotsInterpolateBetweenTwoTimes)
+{
+  SimulationConfig c = smallConfig();
+  c.numerics.stepper = StepperType::kImplicit;
+  TowRun run(c, straightShip()), twin(c, straightShip());
+  run.schedule({ thrustAndElevator(1.0, 0.2, 100.0) });  // a moving vehicle
+  twin.schedule({ thrustAndElevator(1.0, 0.2, 100.0) });
+  run.start(0.0);
+  twin.start(0.0);
+  run.advanceTo(10.0);
+  const TowSnapshot a = run.snapshot();
+  run.advanceTo(10.5);
+  const TowSnapshot b = run.snapshot();
+  twin.advanceTo(10.25);
+  const TowSnapshot mid = twin.snapshot();
+  const TowSnapshot i = interpolate(a, b, 10.25);
+  EXPECT_EQ(i.t, 10.25);
+  // Linear in time between outputs that move by decimetres: the midpoint within millimetres.
+  EXPECT_LT((i.joints - mid.joints).cwiseAbs().maxCoeff(), 5e-3);
+  EXPECT_NEAR(i.depth, mid.depth, 1e-3);
+  EXPECT_NEAR(i.tension_ship, mid.tension_ship, 1e-3 * mid.tension_ship);
+  EXPECT_NEAR(i.vehicle.elevator, mid.vehicle.elevator, 1e-3);
+  EXPECT_LT(i.attitude.angularDistance(mid.attitude), 1e-3);
+  // The ends are the snapshots themselves; outside them the nearer end.
+  EXPECT_EQ(interpolate(a, b, 10.0).joints, a.joints);
+  EXPECT_EQ(interpolate(a, b, 10.5).joints, b.joints);
+  EXPECT_EQ(interpolate(a, b, 11.0).t, b.t);
+  // Yaw the short way round across +-pi.
+  TowSnapshot left = a, right = b;
+  left.yaw = M_PI - 0.1;
+  right.yaw = -M_PI + 0.1;
+  EXPECT_NEAR(std::abs(interpolate(left, right, 10.25).yaw), M_PI, 1e-12);
+  // A change of layout (the winch re-meshing): the nearer snapshot whole.
+  right.joints.conservativeResize(3, right.joints.cols() + 1);
+  EXPECT_EQ(interpolate(left, right, 10.1).joints, left.joints);
+}
+
 }  // namespace
 }  // namespace tow_sim

@@ -130,6 +130,9 @@ public:
   const WinchParams& winch() const { return winch_; }
 
   double time() const { return t_; }
+  // [s] the step the stepper takes next if nothing cuts it short: the fixed step, or the adaptive
+  // steppers' proposal (at most max_step).
+  double nextStep() const;
   ChainState state() const;
   const StateVector& stateVector() const { return y_; }  // the integrator's state, StateLayout
   ShipEndState shipEnd() const { return ship_(t_); }

@@ -73,6 +73,13 @@ struct TowSnapshot
   std::optional<double> depth_setpoint;  // [m] the autopilot's (the equivalent depth in altitude mode)
 };
 
+// The outputs at time t between two snapshots a, b of one run (a.t <= t <= b.t, else the nearer end):
+// linear in every continuous output (positions, velocities, tensions, loads, angles), the attitudes by
+// slerp, the discrete ones (slack and contact flags, setpoint, layout) from the nearer snapshot; across
+// a change of layout (the winch re-meshing) the nearer snapshot whole. The length-error maximum is the
+// larger of the two. (The node publishes between whole steps of the implicit stepper this way.)
+TowSnapshot interpolate(const TowSnapshot& a, const TowSnapshot& b, double t);
+
 class TowRun
 {
 public:
@@ -108,6 +115,7 @@ public:
   TowSnapshot snapshot();
 
   double time() const { return sim_.time(); }
+  double nextStep() const { return sim_.nextStep(); }  // [s] Simulator::nextStep
   const Simulator& simulator() const { return sim_; }
   const ChainModel& model() const { return *model_; }
   const Vehicle& vehicle() const { return *vehicle_; }

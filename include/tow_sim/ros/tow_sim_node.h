@@ -50,6 +50,8 @@ private:
 
   void start(double t);  // the initial shape at the ship's pose at time t (relative)
   void restartAfterDivergence(const std::string& why);
+  void integrateTo(double target);          // [s] relative time; restarts after a divergence; diagnostics
+  void recordStep();                        // after_ (and before_ the previous after_) from the run now
   void forgetShip(const std::string& why);  // drops the track; the next odometry lays the cable out again
   // Times on the simulation's axis: seconds since time_origin_ns_, in 64-bit nanoseconds, so no stamp
   // (zero, before the origin, ros::TIME_MAX) can make ros::Time arithmetic throw.
@@ -71,6 +73,12 @@ private:
   OdometryLimits odometry_limits_;
   TowSnapshot last_;        // the last published outputs (the status line prints them)
   bool have_last_ = false;  // last_ is of the current run
+  // With an implicit stepper the run advances in the stepper's own steps, past the clock, and the outputs
+  // are published interpolated between the last two step ends (before_, after_).
+  bool whole_steps_ = false;
+  TowSnapshot before_, after_;
+  bool have_after_ = false;  // after_ is of the current run
+  bool have_steps_ = false;  // and so is before_
 
   int64_t time_origin_ns_ = 0;
   ros::Time last_tf_stamp_;
