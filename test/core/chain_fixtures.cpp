@@ -1,11 +1,34 @@
 #include "core/chain_fixtures.h"
 
 #include <Eigen/Geometry>
+#include <cstdlib>
+#include <stdexcept>
+#include <string>
 
 namespace tow_sim
 {
 namespace test
 {
+NumericsParams suiteNumerics()
+{
+  NumericsParams n;
+  const char* name = std::getenv("TOW_SIM_TEST_STEPPER");
+  if (!name || !*name)
+    return n;
+  const std::string s = name;
+  if (s == "dopri5")
+    n.stepper = StepperType::kDopri5;
+  else if (s == "rk4")
+    n.stepper = StepperType::kRk4;
+  else if (s == "implicit")
+    n.stepper = StepperType::kImplicit;
+  else if (s == "implicit_fixed")
+    n.stepper = StepperType::kImplicitFixed;
+  else
+    throw std::invalid_argument("TOW_SIM_TEST_STEPPER: '" + s + "' must be dopri5, rk4, implicit or implicit_fixed");
+  return n;
+}
+
 double chainEnergy(const ChainModel& model, const CableParams& cable, const EndElementParams& end, double gravity,
                    const ShipEndState& ship, const ChainState& state)
 {

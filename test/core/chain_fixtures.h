@@ -10,6 +10,11 @@ namespace tow_sim
 {
 namespace test
 {
+// The numerics of the suites that run once per stepper (Winch, Seabed, CurrentProfile, VehicleTow): the
+// defaults, with the stepper TOW_SIM_TEST_STEPPER names (dopri5, rk4, implicit, implicit_fixed) when
+// set. CTest and catkin run those suites a second time with it set to implicit.
+NumericsParams suiteNumerics();
+
 inline std::shared_ptr<ChainModel> makeModel(const CableParams& cable, const EndElementParams& end,
                                              const Environment& env, const NumericsParams& num = NumericsParams(),
                                              std::shared_ptr<const Seabed> seabed = nullptr)

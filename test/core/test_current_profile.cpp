@@ -77,7 +77,7 @@ Tow makeTow(const Eigen::Vector3d& ship_velocity, const Eigen::Vector3d& current
   env.current_profile = current_profile;
   auto vehicle = std::make_shared<Vehicle>(VehicleParams());
   Tow tow;
-  tow.model = std::make_shared<ChainModel>(cable, vehicle, env, NumericsParams());
+  tow.model = std::make_shared<ChainModel>(cable, vehicle, env, test::suiteNumerics());
   tow.sim = std::make_unique<Simulator>(tow.model, constantVelocityShip(Eigen::Vector3d::Zero(), ship_velocity));
   return tow;
 }
@@ -99,8 +99,11 @@ TEST(CurrentProfile, UniformProfileIsGalilean)
   const double gap = (a - b).cwiseAbs().maxCoeff();
   const double tension_gap = (moving_ship.sim->tensions() - moving_water.sim->tensions()).cwiseAbs().maxCoeff();
   std::printf("uniform profile vs moving ship after 60 s: joints %.2e m, tensions %.2e N\n", gap, tension_gap);
-  EXPECT_LT(gap, 1e-6);                                                              // [m], measured 2.7e-8
-  EXPECT_LT(tension_gap, 1e-7 * moving_ship.sim->tensions().cwiseAbs().maxCoeff());  // measured 6e-9 relative
+  // The two runs differ by the integration's error only: dopri5 at 1e-7 measured 2.7e-8 m and 6e-9
+  // relative; the implicit stepper at 2e-5, 4.9e-6 m and 1.7e-6 relative.
+  const bool implicit = test::suiteNumerics().stepper == StepperType::kImplicit;
+  EXPECT_LT(gap, implicit ? 2e-5 : 1e-6);  // [m]
+  EXPECT_LT(tension_gap, (implicit ? 1e-5 : 1e-7) * moving_ship.sim->tensions().cwiseAbs().maxCoeff());
   // The cable did move: the comparison is not of two copies of the start.
   const Eigen::Matrix3Xd start = straightChain(*moving_ship.model, Eigen::Vector3d::Zero(), down_astern, u).x;
   EXPECT_GT((a.rightCols(a.cols() - 1) - start).cwiseAbs().maxCoeff(), 1.0);

@@ -89,7 +89,7 @@ TEST(Seabed, CableLaidOnTheBottomAtRestHasNoTensionGradientWhereItLies)
   sp.depth = 100.0;
   sp.vehicle_stiffness = sp.stiffness * cable.segmentLength();  // the end element is one more segment
   sp.vehicle_damping = sp.damping * cable.segmentLength();
-  auto model = test::makeModel(cable, end, env, NumericsParams(), std::make_shared<Seabed>(sp));
+  auto model = test::makeModel(cable, end, env, test::suiteNumerics(), std::make_shared<Seabed>(sp));
   const double d = cable.segmentLength();
   ChainState start;
   start.x.resize(3, 51);
@@ -135,7 +135,7 @@ TEST(Seabed, VehicleTowedIntoARisingSlopeIsLiftedNotPushedThrough)
   std::vector<double> depths;
   for (double x = -1000.0; x <= 3000.0; x += 100.0)
     depths.push_back(x <= 400.0 ? 125.0 : (x >= 900.0 ? 70.0 : 125.0 - 55.0 * (x - 400.0) / 500.0));
-  auto model = std::make_shared<ChainModel>(cable, vehicle, Environment(), NumericsParams(),
+  auto model = std::make_shared<ChainModel>(cable, vehicle, Environment(), test::suiteNumerics(),
                                             std::make_shared<Seabed>(ridge(-1000.0, 100.0, depths)));
   const Eigen::Vector3d u(2.0, 0.0, 0.0);
   const EquilibriumResult eq = steadyTowEquilibrium(*model, 0.0, Eigen::Vector3d::Zero(), u);
@@ -200,7 +200,7 @@ TEST(Seabed, NonFinitePositionsGiveNaNNotACrash)
   CableParams cable;
   cable.length = 100.0;
   cable.segments = 10;
-  auto model = test::makeModel(cable, test::endLikeSegment(cable), env, NumericsParams(),
+  auto model = test::makeModel(cable, test::endLikeSegment(cable), env, test::suiteNumerics(),
                                std::make_shared<Seabed>(ridge(-1000.0, 1000.0, { 50.0, 60.0, 70.0 })));
   Simulator sim(model,
                 [](double t)

@@ -40,7 +40,7 @@ Tow makeTow(const VehicleParams& p, double speed, const Eigen::Vector3d& start_d
   cable.length = cable_length;
   cable.segments = segments;
   tow.vehicle = std::make_shared<Vehicle>(p);
-  tow.model = std::make_shared<ChainModel>(cable, tow.vehicle, Environment(), NumericsParams());
+  tow.model = std::make_shared<ChainModel>(cable, tow.vehicle, Environment(), test::suiteNumerics());
   const Eigen::Vector3d u(speed, 0.0, 0.0);
   tow.sim = std::make_unique<Simulator>(tow.model, constantVelocityShip(Eigen::Vector3d::Zero(), u));
   tow.sim->reset(0.0, straightChain(*tow.model, Eigen::Vector3d::Zero(), start_direction, u));

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/chain_fixtures.h"
 #include "tow_sim/core/equilibrium.h"
 #include "tow_sim/core/simulator.h"
 #include "tow_sim/core/vehicle.h"
@@ -41,7 +42,7 @@ Tow makeTow(double length, int segments, const Eigen::Vector3d& ship_velocity, c
   cable.segments = segments;
   Tow tow;
   tow.vehicle = std::make_shared<Vehicle>(VehicleParams());
-  tow.model = std::make_shared<ChainModel>(cable, tow.vehicle, Environment(), NumericsParams());
+  tow.model = std::make_shared<ChainModel>(cable, tow.vehicle, Environment(), test::suiteNumerics());
   tow.sim = std::make_unique<Simulator>(tow.model, constantVelocityShip(Eigen::Vector3d::Zero(), ship_velocity), winch);
   const EquilibriumResult eq = steadyTowEquilibrium(*tow.model, 0.0, Eigen::Vector3d::Zero(), ship_velocity);
   tow.sim->reset(0.0, eq.state);
@@ -196,8 +197,10 @@ TEST(Winch, PayingOutDeepensTowardTheLongerCablesEquilibrium)
   const Eigen::Matrix3Xd b = longer.sim->jointPositions().colwise() - longer.sim->shipEnd().p_W;
   ASSERT_EQ(a.cols(), b.cols());
   EXPECT_LT((a - b).colwise().norm().maxCoeff(), 0.02);
-  // The length constraint holds through the steps by the dynamics, not only by the projection.
-  EXPECT_LT(worst_error, 1e-7);
+  // The length constraint holds through the steps by the dynamics, not only by the projection: to the
+  // integration's accuracy (dopri5 at 1e-7: measured 2e-8; implicit at 2e-5: measured 7e-6).
+  const bool implicit = test::suiteNumerics().stepper == StepperType::kImplicit;
+  EXPECT_LT(worst_error, implicit ? 3e-5 : 1e-7);
 }
 
 // Hauling in stops at min_length = the starting 300 m, so the way back ends exactly where it began.
@@ -263,8 +266,8 @@ TEST(Winch, ADisabledWinchDoesNotConstrainTheCable)
   cable.length = 1000.0;
   cable.segments = 4;  // 250 m segments: beyond the enabled winch's default min_length band
   EXPECT_NO_THROW(validate(WinchParams(), cable));
-  auto model =
-      std::make_shared<ChainModel>(cable, std::make_shared<Vehicle>(VehicleParams()), Environment(), NumericsParams());
+  auto model = std::make_shared<ChainModel>(cable, std::make_shared<Vehicle>(VehicleParams()), Environment(),
+                                            test::suiteNumerics());
   EXPECT_NO_THROW(Simulator(model, constantVelocityShip(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero())));
 }
 
@@ -280,7 +283,7 @@ TEST(Winch, ReMeshingTerminatesOnTheBandEdge)
   w.min_length = 5.0;
   w.max_length = 40.0;
   auto vehicle = std::make_shared<Vehicle>(VehicleParams());
-  auto model = std::make_shared<ChainModel>(cable, vehicle, Environment(), NumericsParams());
+  auto model = std::make_shared<ChainModel>(cable, vehicle, Environment(), test::suiteNumerics());
   const double d = model->nominalSegmentLength();
   Simulator sim(model, constantVelocityShip(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()), w);
   sim.restoreLayout(87, (35.0 - 86 * d) + 86 * d);  // 35 m out, the first segment a few ulps past 1.5 d
@@ -322,7 +325,7 @@ TEST(Winch, PaidOutCableDragsAtItsOwnSpeedThroughTheWater)
   w.max_acceleration = 1.0;
   auto vehicle = std::make_shared<Vehicle>(VehicleParams());
   const Environment env;
-  auto model = std::make_shared<ChainModel>(cable, vehicle, env, NumericsParams());
+  auto model = std::make_shared<ChainModel>(cable, vehicle, env, test::suiteNumerics());
   Simulator sim(model, constantVelocityShip(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()), w);
   sim.reset(0.0, straightChain(*model, Eigen::Vector3d::Zero(), -Eigen::Vector3d::UnitZ(), Eigen::Vector3d::Zero()));
   sim.advanceTo(60.0);  // the hanging vehicle settles
@@ -349,7 +352,7 @@ TEST(Winch, FastHaulInWithFixedStepsNeverCollapsesTheFirstSegment)
   CableParams cable;
   cable.length = 100.0;
   cable.segments = 100;  // d = 1 m
-  NumericsParams num;
+  NumericsParams num = test::suiteNumerics();
   num.stepper = StepperType::kRk4;
   num.fixed_step = 0.02;
   WinchParams w;
