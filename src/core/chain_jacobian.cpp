@@ -59,7 +59,7 @@ void segmentJacobian(const ChainModel& model, int e, const ElementKinematics& k,
   out.dh_dx = J.transpose() * dw_dx;
 }
 
-// The end body: forward differences of its projected loads over x_f, x_a, v_f, v_a.
+// The end body: central differences of its projected loads over x_f, x_a, v_f, v_a.
 void endBodyJacobian(const ChainModel& model, int e, double t, const ElementKinematics& k,
                      const ChainGeometry& geometry, const ChainData& data, const Vector6d* accelerations,
                      ElementJacobian& out)
@@ -74,19 +74,22 @@ void endBodyJacobian(const ChainModel& model, int e, double t, const ElementKine
       return J.transpose() * (body.wrench - body.mass * (J * *accelerations));
     return J.transpose() * body.wrench;
   };
-  const Vector6d h0 = loads(k);
+  // Central differences: the loads have corners (|u_n| where the cross-flow vanishes, as at a steady
+  // tow), where one-sided differences taken from the two joints would not cancel for a translation.
   Eigen::Vector3d joint[4] = { k.x_f, k.x_a, k.v_f, k.v_a };
   for (int j = 0; j < 12; ++j)
   {
     Eigen::Vector3d& component_of = joint[j / 3];
     const double saved = component_of[j % 3];
     const bool position = j < 6;
-    // About sqrt(machine epsilon) of the scale of what is perturbed: the element's length, the speed.
-    const double step = 1e-7 * (position ? std::max(1.0, k.length) : std::max(1.0, std::abs(saved)));
+    // About the cube root of machine epsilon of the scale of what is perturbed: the element's length, the speed.
+    const double step = 1e-5 * (position ? std::max(1.0, k.length) : std::max(1.0, std::abs(saved)));
     component_of[j % 3] = saved + step;
-    const Vector6d h = loads(ElementKinematics::fromJoints(joint[0], joint[1], joint[2], joint[3]));
+    const Vector6d plus = loads(ElementKinematics::fromJoints(joint[0], joint[1], joint[2], joint[3]));
+    component_of[j % 3] = saved - step;
+    const Vector6d minus = loads(ElementKinematics::fromJoints(joint[0], joint[1], joint[2], joint[3]));
     component_of[j % 3] = saved;
-    (position ? out.dh_dx : out.dh_dv).col(j % 6) = (h - h0) / step;
+    (position ? out.dh_dx : out.dh_dv).col(j % 6) = (plus - minus) / (2.0 * step);
   }
 }
 }  // namespace
