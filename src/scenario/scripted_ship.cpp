@@ -124,11 +124,19 @@ void ScriptedShip::step(double dt, const Teleop* teleop)
     t = targets();
   }
   teleop_ = teleop != nullptr;
+  const double u0 = u_, heading0 = heading_;
   u_ += std::clamp(t.speed - u_, -kMaxAcceleration * dt, kMaxAcceleration * dt);
   r_ += (t.yaw_rate - r_) * std::min(1.0, dt / kYawLag);
   heading_ += r_ * dt;
-  x_ += u_ * std::cos(heading_) * dt;
-  y_ += u_ * std::sin(heading_) * dt;
+  // The position is the integral of the velocity over the step (the speed going linearly from u0 to u_,
+  // the heading turning at r_), so that the velocity reported at each sample agrees with the positions:
+  // a mismatch of O(dt a) bends the tow point's interpolated path into accelerations that swing at the
+  // sampling rate, which the simulation would have to follow.
+  const double u_mean = 0.5 * (u0 + u_), turn = r_ * dt;
+  const double along = std::abs(turn) > 1e-6 ? std::sin(0.5 * turn) / (0.5 * turn) : 1.0 - turn * turn / 24.0;
+  const double mid = heading0 + 0.5 * turn;
+  x_ += u_mean * along * std::cos(mid) * dt;
+  y_ += u_mean * along * std::sin(mid) * dt;
   time_ += dt;
 }
 
