@@ -87,9 +87,11 @@ double rk4Step(const SimulationConfig& c, double tension)
   return std::min(1.0, 2.5 / omega);
 }
 
-void BM_Tow(benchmark::State& state, Path path, bool deep, StepperType stepper, int segments, double chunk)
+void BM_Tow(benchmark::State& state, Path path, bool deep, StepperType stepper, int segments, double chunk,
+            ImplicitMethod method = NumericsParams().implicit_method)
 {
   SimulationConfig c = config(segments, deep);
+  c.numerics.implicit_method = method;
   const double speed = deep ? 1.5 : 2.0;
   const double duration = 12.0 + chunk * 6.0;  // every iteration (at most 5) and a margin
   if (stepper == StepperType::kRk4)
@@ -139,39 +141,36 @@ void BM_Tow(benchmark::State& state, Path path, bool deep, StepperType stepper, 
   state.counters["realtime"] = benchmark::Counter(simulated, benchmark::Counter::kIsRate);
 }
 
-const char* name(StepperType s)
+// The steppers compared: the explicit ones, the default implicit (ros34pw2) and ros2.
+struct Variant
 {
-  switch (s)
-  {
-    case StepperType::kDopri5:
-      return "dopri5";
-    case StepperType::kRk4:
-      return "rk4";
-    case StepperType::kImplicit:
-      return "implicit";
-    default:
-      return "implicit_fixed";
-  }
-}
+  StepperType stepper;
+  ImplicitMethod method;
+  const char* label;
+};
+const Variant kVariants[] = { { StepperType::kDopri5, ImplicitMethod::kRos34pw2, "dopri5" },
+                              { StepperType::kRk4, ImplicitMethod::kRos34pw2, "rk4" },
+                              { StepperType::kImplicit, ImplicitMethod::kRos34pw2, "implicit" },
+                              { StepperType::kImplicit, ImplicitMethod::kRos2, "implicit_ros2" } };
 
 void registerAll()
 {
   for (Path path : { Path::kStraight, Path::kTurn })
     for (int segments : { 50, 100, 200, 1000, 2000 })
-      for (StepperType stepper : { StepperType::kDopri5, StepperType::kRk4, StepperType::kImplicit })
+      for (const Variant& v : kVariants)
       {
         // Enough simulated time per iteration to time, little enough for the explicit steppers at nu = 2000.
-        const bool slow = stepper != StepperType::kImplicit && segments >= 1000;
+        const bool slow = v.stepper != StepperType::kImplicit && segments >= 1000;
         const double chunk = slow ? 1.0 : 10.0;
-        const std::string label = std::string(path == Path::kTurn ? "turn" : "steady") + "/" + name(stepper) +
-                                  "/nu:" + std::to_string(segments);
-        benchmark::RegisterBenchmark(label.c_str(), BM_Tow, path, false, stepper, segments, chunk)
+        const std::string label =
+            std::string(path == Path::kTurn ? "turn" : "steady") + "/" + v.label + "/nu:" + std::to_string(segments);
+        benchmark::RegisterBenchmark(label.c_str(), BM_Tow, path, false, v.stepper, segments, chunk, v.method)
             ->Iterations(slow ? 3 : 5)
             ->Unit(benchmark::kMillisecond);
       }
-  for (StepperType stepper : { StepperType::kDopri5, StepperType::kRk4, StepperType::kImplicit })
-    benchmark::RegisterBenchmark((std::string("deep6km/") + name(stepper) + "/nu:1000").c_str(), BM_Tow,
-                                 Path::kStraight, true, stepper, 1000, 10.0)
+  for (const Variant& v : kVariants)
+    benchmark::RegisterBenchmark((std::string("deep6km/") + v.label + "/nu:1000").c_str(), BM_Tow, Path::kStraight,
+                                 true, v.stepper, 1000, 10.0, v.method)
         ->Iterations(3)
         ->Unit(benchmark::kMillisecond);
 }

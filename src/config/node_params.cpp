@@ -26,6 +26,9 @@ const ParamTable<NodeParams>& nodeParams()
                   "state, markers, odometry, fin loads, tf")
           .number("odom_delay", &N::odom_delay, "s", 0.0, 10.0, kClosed,
                   "the simulation runs this far behind the clock, to interpolate between odometry messages")
+          .number("max_command_lag", &N::max_command_lag, "s", 0.001, 10.0, kClosed,
+                  "the adaptive implicit stepper's steps are capped at this (and numerics.max_step): a "
+                  "command from another node acts from the end of the step under way")
           .number("max_extrapolation", &N::max_extrapolation, "s", 0.0, 60.0, kClosed,
                   "past the newest odometry; then the simulation holds")
           .number("max_ship_speed", &N::max_ship_speed, "m/s", 0.0, 1000.0, kOpen,

@@ -32,7 +32,7 @@ void ImplicitStepper::linearise(const ChainModel& model, const ChainGeometry& ge
 
 void ImplicitStepper::factor(double h)
 {
-  const double gh = kGamma * h, gh2 = gh * gh;
+  const double gh = gamma_ * h, gh2 = gh * gh;
   for (size_t i = 0; i < stage_.size(); ++i)
   {
     const ElementTerms& M = inertia_[i];
@@ -51,7 +51,7 @@ void ImplicitStepper::factor(double h)
 void ImplicitStepper::solve(const std::vector<double>& r, const TowPointRates& tow, std::vector<double>& K)
 {
   const StateLayout L{ joints() };
-  const double gh = kGamma * h_;
+  const double gh = gamma_ * h_;
   const auto r_x = L.positions(r);
   const auto r_v = L.velocities(r);
   for (size_t i = 0; i < stage_.size(); ++i)

@@ -65,7 +65,12 @@ const ParamTable<NumericsParams>& numericsParams()
                     { "implicit", StepperType::kImplicit },
                     { "implicit_fixed", StepperType::kImplicitFixed } },
                   "dopri5: adaptive Dormand–Prince 5(4); rk4: fixed steps; implicit: linearly implicit "
-                  "Rosenbrock-W (ROS2), adaptive, O(ν) per stage; implicit_fixed: the same with fixed steps")
+                  "Rosenbrock-W (implicit_method), adaptive, O(ν) per stage; implicit_fixed: the same with fixed "
+                  "steps")
+          .choice("implicit_method", &N::implicit_method,
+                  { { "ros34pw2", ImplicitMethod::kRos34pw2 }, { "ros2", ImplicitMethod::kRos2 } },
+                  "the implicit steppers' Rosenbrock-W method: ros34pw2 (4 stages, order 3, embedded order 2) "
+                  "or ros2 (2 stages, order 2, embedded order 1)")
           .number("abs_tol", &N::abs_tol, "-", 0.0, 1.0, kOpen, "absolute error tolerance of dopri5 (m, m/s)")
           .number("rel_tol", &N::rel_tol, "-", 0.0, 1.0, kOpen, "relative error tolerance of dopri5")
           .number("implicit_position_tol", &N::implicit_position_tol, "m", 0.0, 10.0, kOpen,

@@ -114,6 +114,8 @@ Simulator::Simulator(std::shared_ptr<const ChainModel> model, ShipMotion ship, c
   tensions_.setZero(3, L.joints);
   accelerations_.setZero(3, L.joints);
   dt_ = std::min(model_->numerics().max_step, 0.01);
+  tableau_ = model_->numerics().implicit_method == ImplicitMethod::kRos2 ? &ros2Tableau() : &ros34pw2Tableau();
+  implicit_.setGamma(tableau_->gamma);
 }
 
 Simulator::~Simulator() = default;

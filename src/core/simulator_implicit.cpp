@@ -74,6 +74,51 @@ double Simulator::errorNorm(const StateVector& error, const StateVector& y_next,
   return std::sqrt(sum / count);
 }
 
+// The stages of the tableau (rosenbrock_tableau.h) for the step h, factored: y_next_ and error_. The tow
+// point's increments in stage i are K_t,i (v, a) at t (implicit_stepper.h).
+void Simulator::implicitStages(double h)
+{
+  const RosenbrockTableau& rw = *tableau_;
+  const size_t n = y_.size();
+  const ShipEndState ship = ship_(t_);
+  stage_k_.resize(rw.stages);
+  stage_y_.resize(n);
+  stage_f_.resize(n);
+  double K_t[RosenbrockTableau::kMaxStages];
+  for (int i = 0; i < rw.stages; ++i)
+  {
+    double t_stage = t_;
+    K_t[i] = 1.0;
+    if (i == 0)
+      stage_f_ = dydt_;  // f(t, y), from the linearisation
+    else
+    {
+      stage_y_ = y_;
+      for (int j = 0; j < i; ++j)
+      {
+        t_stage += h * rw.a[i][j] * K_t[j];
+        K_t[i] += rw.c[i][j] * K_t[j];
+        if (rw.a[i][j] != 0.0)
+          for (size_t q = 0; q < n; ++q)
+            stage_y_[q] += h * rw.a[i][j] * stage_k_[j][q];
+      }
+      derivative(t_stage, stage_y_, stage_f_);
+      for (int j = 0; j < i; ++j)
+        for (size_t q = 0; q < n; ++q)
+          stage_f_[q] += rw.c[i][j] * stage_k_[j][q];
+    }
+    implicit_.solve(stage_f_, TowPointRates{ K_t[i] * ship.v_W, K_t[i] * ship.a_W }, stage_k_[i]);
+  }
+  y_next_ = y_;
+  error_.assign(n, 0.0);
+  for (int i = 0; i < rw.stages; ++i)
+    for (size_t q = 0; q < n; ++q)
+    {
+      y_next_[q] += h * rw.m[i] * stage_k_[i][q];
+      error_[q] += h * rw.e[i] * stage_k_[i][q];
+    }
+}
+
 bool Simulator::stepImplicit(double t_end, double winch_step, StepReport& report)
 {
   const NumericsParams& num = model_->numerics();
@@ -83,33 +128,15 @@ bool Simulator::stepImplicit(double t_end, double winch_step, StepReport& report
                          : std::min({ dt_, remaining, num.max_step, winch_step });
   if (h != implicit_.step())
     implicit_.factor(h);
-  // ROS2: W K1 = f(t, y); W K2 = f(t + h, y + h K1) - 2 K1; y + h (3/2 K1 + 1/2 K2).
-  const size_t n = y_.size();
-  // The tow point's increments, K_t (v, a) at t: K_t = 1, then -1 (implicit_stepper.h).
-  const ShipEndState ship = ship_(t_);
-  implicit_.solve(dydt_, TowPointRates{ ship.v_W, ship.a_W }, k1_);
-  stage_y_.resize(n);
-  for (size_t i = 0; i < n; ++i)
-    stage_y_[i] = y_[i] + h * k1_[i];
-  stage_f_.resize(n);
-  derivative(t_ + h, stage_y_, stage_f_);
-  for (size_t i = 0; i < n; ++i)
-    stage_f_[i] -= 2.0 * k1_[i];
-  implicit_.solve(stage_f_, TowPointRates{ -ship.v_W, -ship.a_W }, k2_);
-  y_next_.resize(n);
-  error_.resize(n);
-  for (size_t i = 0; i < n; ++i)
-  {
-    y_next_[i] = y_[i] + h * (1.5 * k1_[i] + 0.5 * k2_[i]);
-    error_[i] = 0.5 * h * (k1_[i] + k2_[i]);  // against the first-order y + h K1
-  }
+  implicitStages(h);
   const bool clamped = h == remaining;
   const double t_next = clamped ? t_end : t_ + h;
   if (!fixed)
   {
     const double err = errorNorm(error_, y_next_, t_next);
-    // Order 2 with an embedded order 1: the error goes like h^2.
-    const double grow = std::isfinite(err) ? 0.9 / std::sqrt(std::max(err, 1e-10)) : 0.2;
+    // The error estimate goes like h^(embedded order + 1).
+    const double grow =
+        std::isfinite(err) ? 0.9 * std::pow(std::max(err, 1e-10), -1.0 / (tableau_->embedded_order + 1)) : 0.2;
     if (!(err <= 1.0))
     {
       ++report.rejected;

@@ -38,11 +38,21 @@ bool guarded(const char* what, F&& f)
   }
 }
 
-SimulationConfig readConfig(const ros::NodeHandle& pnh)
+bool takesWholeSteps(const NumericsParams& numerics)
+{
+  return numerics.stepper == StepperType::kImplicit || numerics.stepper == StepperType::kImplicitFixed;
+}
+
+// The configuration; the adaptive implicit stepper's steps are capped at max_command_lag, since a command
+// from another node acts from the end of the step under way (implicit_fixed keeps its fixed_step).
+SimulationConfig readConfig(const ros::NodeHandle& pnh, const NodeParams& params)
 {
   try
   {
-    return loadConfig(ros_conv::privateParameters(pnh), pnh.getNamespace() + "/");
+    SimulationConfig config = loadConfig(ros_conv::privateParameters(pnh), pnh.getNamespace() + "/");
+    if (takesWholeSteps(config.numerics))
+      config.numerics.max_step = std::min(config.numerics.max_step, params.max_command_lag);
+    return config;
   }
   catch (const std::invalid_argument& e)
   {
@@ -67,11 +77,10 @@ TowSimNode::TowSimNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     : nh_(nh),
       pnh_(pnh),
       params_(ros_conv::readPrivateParams<NodeParams>(pnh, nodeParams(), validate)),
-      config_(readConfig(pnh)),
+      config_(readConfig(pnh, params_)),
       ship_(std::make_shared<ShipHistory>(params_.max_extrapolation, kTrackCapacity)),
       run_(config_, ship_, initialShape(params_)),
-      whole_steps_(config_.numerics.stepper == StepperType::kImplicit ||
-                   config_.numerics.stepper == StepperType::kImplicitFixed)
+      whole_steps_(takesWholeSteps(config_.numerics))
 {
   odometry_limits_.world_frame = params_.world_frame;
   odometry_limits_.tow_point_S = params_.tow_point_S;

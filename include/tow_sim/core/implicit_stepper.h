@@ -38,7 +38,15 @@ struct TowPointRates
 class ImplicitStepper
 {
 public:
-  static constexpr double kGamma = 1.7071067811865475;  // 1 + 1/sqrt(2)
+  static constexpr double kGamma = 1.7071067811865475;  // ROS2's, 1 + 1/sqrt(2): the default
+
+  // The method's gamma (rosenbrock_tableau.h); factor() must follow.
+  void setGamma(double gamma)
+  {
+    gamma_ = gamma;
+    h_ = 0.0;
+  }
+  double gamma() const { return gamma_; }
 
   // The linearisation at a state: `terms`, `multipliers` and accelerations a of a ChainSolver::solve at it
   // (the projected inertia, the axes, the axial forces), its joints x, v (3 x (nu+1)), the tow point's
@@ -65,6 +73,7 @@ private:
   ChainSweep sweep_;
   Eigen::Matrix3Xd K_v_;
   double h_ = 0.0;
+  double gamma_ = kGamma;
   double winch_d_length_ = 0.0, winch_d_rate_ = 0.0;
 };
 

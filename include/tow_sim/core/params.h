@@ -86,20 +86,27 @@ struct EndElementParams
 
 enum class StepperType
 {
-  kDopri5,        // adaptive Dormand-Prince 5(4) with error control (default)
+  kDopri5,        // adaptive Dormand-Prince 5(4) with error control
   kRk4,           // classical Runge-Kutta with a fixed step
-  kImplicit,      // linearly implicit Rosenbrock-W (ROS2) with error control, O(nu) stages
+  kImplicit,      // linearly implicit Rosenbrock-W (ROS2) with error control, O(nu) stages (default)
   kImplicitFixed  // the same with a fixed step, for hard real time
+};
+
+enum class ImplicitMethod
+{
+  kRos34pw2,  // 4 stages, order 3, embedded order 2 (Rang and Angermann 2005) (default)
+  kRos2       // 2 stages, order 2, embedded order 1 (Verwer et al. 1999)
 };
 
 struct NumericsParams
 {
-  StepperType stepper = StepperType::kDopri5;
+  StepperType stepper = StepperType::kImplicit;
+  ImplicitMethod implicit_method = ImplicitMethod::kRos34pw2;
   double abs_tol = 1e-7;                     // [-] absolute error tolerance of dopri5 (m, m/s), > 0 .. 1
   double rel_tol = 1e-7;                     // [-] relative error tolerance of dopri5, > 0 .. 1
-  double implicit_position_tol = 2e-5;       // [m] absolute tolerance of implicit on positions, > 0 .. 10
-  double implicit_velocity_tol = 2e-5;       // [m/s] absolute tolerance of implicit on velocities, > 0 .. 10
-  double implicit_rel_tol = 2e-5;            // [-] relative tolerance of implicit, > 0 .. 1
+  double implicit_position_tol = 1e-5;       // [m] absolute tolerance of implicit on positions, > 0 .. 10
+  double implicit_velocity_tol = 1e-5;       // [m/s] absolute tolerance of implicit on velocities, > 0 .. 10
+  double implicit_rel_tol = 1e-5;            // [-] relative tolerance of implicit, > 0 .. 1
   double max_step = 0.5;                     // [s] largest adaptive step, > 0 .. 10
   double fixed_step = 0.01;                  // [s] step of the fixed-step steppers, > 0 .. 1
   double tangential_smoothing_speed = 0.01;  // [m/s] Pode drag changes sign smoothly over this |u.s|, > 0 .. 1

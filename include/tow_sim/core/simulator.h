@@ -12,6 +12,7 @@
 #include "tow_sim/core/chain_model.h"
 #include "tow_sim/core/chain_solver.h"
 #include "tow_sim/core/implicit_stepper.h"
+#include "tow_sim/core/rosenbrock_tableau.h"
 
 namespace tow_sim
 {
@@ -165,6 +166,7 @@ private:
   void stepOnce(double t_end, double winch_step, StepReport& report);  // one accepted or rejected step
   // The implicit stepper's step: false when rejected (dt_ then holds the step to try next).
   bool stepImplicit(double t_end, double winch_step, StepReport& report);
+  void implicitStages(double h);  // y_next_ and error_ of the step h (factored)
   bool implicit() const;  // numerics.stepper is implicit or implicit_fixed
   double errorNorm(const StateVector& error, const StateVector& y_next, double t_next) const;  // weighted RMS
   void linearise();                             // the implicit stepper's J at the current state (after refreshOutputs)
@@ -186,7 +188,9 @@ private:
   Eigen::Matrix3Xd tensions_, accelerations_;
   std::vector<double> multipliers_;  // each element's axial multiplier at the current state [N]
   ImplicitStepper implicit_;
-  StateVector k1_, k2_, stage_y_, stage_f_, y_next_, error_;  // the implicit step's workspace
+  const RosenbrockTableau* tableau_ = nullptr;                 // the implicit steppers' method
+  std::vector<StateVector> stage_k_;                           // the implicit step's workspace
+  StateVector stage_y_, stage_f_, y_next_, error_;
 };
 
 }  // namespace tow_sim
