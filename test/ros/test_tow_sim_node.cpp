@@ -31,7 +31,7 @@
 
 namespace
 {
-const char* const kNodes[] = { "base", "elevator", "rudder", "robust", "unstable", "winch", "implicit" };
+const char* const kNodes[] = { "base", "elevator", "rudder", "robust", "unstable", "winch", "dopri5" };
 
 bool allFinite(const tow_sim::CableState& s);
 
@@ -308,21 +308,22 @@ TEST(TowSimNode, ElevatorRaisesTheVehicleRudderMovesItToPort)
   EXPECT_GT(port.diversion, base.diversion + 0.1);
 }
 
-// The implicit stepper's node integrates in its own steps, past the clock, and publishes outputs
-// interpolated at the clock's time: the same stamps as the dopri5 node beside it, and the same tow.
+// The default implicit stepper's node (base) integrates in its own steps, past the clock, and publishes
+// outputs interpolated at the clock's time: the same stamps as the dopri5 node beside it, which ends a
+// step at each physics tick, and the same tow.
 TEST(TowSimNode, TheImplicitStepperPublishesAtTheClockFromItsOwnSteps)
 {
   world->advance(20.0);
   std::lock_guard<std::mutex> lock(world->rec_.mutex);
-  const auto& base = world->rec_.state["base"];
-  const auto& implicit = world->rec_.state["implicit"];
+  const auto& dopri5 = world->rec_.state["dopri5"];
+  const auto& implicit = world->rec_.state["base"];
   std::printf("implicit vs dopri5 node: stamp %.3f vs %.3f s, depth %.4f vs %.4f m, tension %.2f vs %.2f N\n",
-              implicit.header.stamp.toSec(), base.header.stamp.toSec(), implicit.vehicle_depth, base.vehicle_depth,
-              implicit.tension_ship, base.tension_ship);
-  EXPECT_NEAR(implicit.header.stamp.toSec(), base.header.stamp.toSec(), 1e-6);
-  EXPECT_NEAR(implicit.vehicle_depth, base.vehicle_depth, 1e-3 * base.vehicle_depth);
-  EXPECT_NEAR(implicit.tension_ship, base.tension_ship, 5e-3 * base.tension_ship);
-  EXPECT_NEAR(implicit.layback, base.layback, 1e-3 * base.layback);
+              implicit.header.stamp.toSec(), dopri5.header.stamp.toSec(), implicit.vehicle_depth, dopri5.vehicle_depth,
+              implicit.tension_ship, dopri5.tension_ship);
+  EXPECT_NEAR(implicit.header.stamp.toSec(), dopri5.header.stamp.toSec(), 1e-6);
+  EXPECT_NEAR(implicit.vehicle_depth, dopri5.vehicle_depth, 1e-3 * dopri5.vehicle_depth);
+  EXPECT_NEAR(implicit.tension_ship, dopri5.tension_ship, 5e-3 * dopri5.tension_ship);
+  EXPECT_NEAR(implicit.layback, dopri5.layback, 1e-3 * dopri5.layback);
   EXPECT_TRUE(allFinite(implicit));
 }
 

@@ -1,8 +1,7 @@
-// The linearly implicit step (docs/solver.md §7): ROS2, a two-stage Rosenbrock-W method of order 2,
-// L-stable with gamma = 1 + 1/sqrt(2) (Verwer, Spee, Blom and Hundsdorfer 1999), with an embedded
-// first-order solution for the error estimate:
-//   W K1 = f(t, y),  W K2 = f(t + h, y + h K1) - 2 K1,  W = I - gamma h J,
-//   y_next = y + h (3/2 K1 + 1/2 K2),  error = h (K1 + K2) / 2.
+// The linearly implicit step's stage solve (docs/solver.md §7). The Rosenbrock-W methods (ROS34PW2 by
+// default, ROS2; rosenbrock_tableau.h, whose stage loop is in simulator_implicit.cpp) solve each stage
+// with the same matrix W = I - gamma h J:
+//   W K_i = f(t + c_i h, y + h sum a_ij K_j) + sum c_ij K_j + gamma h K_t,i df/dt.
 // J is an approximation of the right-hand side's Jacobian taken once per step (a W-method keeps its order
 // with any J). Each stage solve (I - gamma h J) K = r costs O(nu): with K = (K_x, K_v) for the positions
 // and velocities, K_x = r_x + gamma h K_v, and K_v with the multipliers solves equations of the solver's
@@ -14,7 +13,7 @@
 // own 2 x 2 block.
 // The right-hand side depends on time through the tow point x_1, which moves as the ship says. The
 // method is applied to the autonomous system in (t, y): its stages then carry the time derivative of f,
-// W K_i = ... + gamma h K_t,i df/dt with K_t = 1 in the first stage and -1 in the second, and df/dt is
+// W K_i = ... + gamma h K_t,i df/dt (K_t the time component of the stages, 1 in the first), and df/dt is
 // the response of the chain to the tow point moving at the ship's velocity and acceleration: the stage
 // takes the tow point's increments (K_t v, K_t a) as known joint values. Without them the tow point's
 // motion acts explicitly on the first element, the stiffest spring of a fine chain.
