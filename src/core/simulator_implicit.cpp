@@ -19,8 +19,7 @@ double Simulator::nextStep() const
 
 bool Simulator::implicit() const
 {
-  const StepperType s = model_->numerics().stepper;
-  return s == StepperType::kImplicit || s == StepperType::kImplicitFixed;
+  return isImplicit(model_->numerics().stepper);
 }
 
 void Simulator::linearise()

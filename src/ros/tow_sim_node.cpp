@@ -38,11 +38,6 @@ bool guarded(const char* what, F&& f)
   }
 }
 
-bool takesWholeSteps(const NumericsParams& numerics)
-{
-  return numerics.stepper == StepperType::kImplicit || numerics.stepper == StepperType::kImplicitFixed;
-}
-
 // The configuration; the adaptive implicit stepper's steps are capped at max_command_lag, since a command
 // from another node acts from the end of the step under way (implicit_fixed keeps its fixed_step).
 SimulationConfig readConfig(const ros::NodeHandle& pnh, const NodeParams& params)
@@ -50,7 +45,7 @@ SimulationConfig readConfig(const ros::NodeHandle& pnh, const NodeParams& params
   try
   {
     SimulationConfig config = loadConfig(ros_conv::privateParameters(pnh), pnh.getNamespace() + "/");
-    if (takesWholeSteps(config.numerics))
+    if (isImplicit(config.numerics.stepper))
       config.numerics.max_step = std::min(config.numerics.max_step, params.max_command_lag);
     return config;
   }
@@ -80,7 +75,7 @@ TowSimNode::TowSimNode(ros::NodeHandle nh, ros::NodeHandle pnh)
       config_(readConfig(pnh, params_)),
       ship_(std::make_shared<ShipHistory>(params_.max_extrapolation, kTrackCapacity)),
       run_(config_, ship_, initialShape(params_)),
-      whole_steps_(takesWholeSteps(config_.numerics))
+      whole_steps_(isImplicit(config_.numerics.stepper))
 {
   odometry_limits_.world_frame = params_.world_frame;
   odometry_limits_.tow_point_S = params_.tow_point_S;

@@ -177,8 +177,7 @@ TEST(Batch, EveryScenarioRunsAndWritesTheDocumentedColumns)
     // Tension is positive, the vehicle is under water, the lengths held: a step leaves a relative length
     // error (before projection) of the order of the stepper's tolerance.
     const NumericsParams& num = sc.config.numerics;
-    const bool implicit = num.stepper == StepperType::kImplicit || num.stepper == StepperType::kImplicitFixed;
-    const double length_bound = implicit ? 5.0 * num.implicit_rel_tol : 10.0 * num.rel_tol;
+    const double length_bound = isImplicit(num.stepper) ? 5.0 * num.implicit_rel_tol : 10.0 * num.rel_tol;
     for (size_t r = 1; r < rows.size(); ++r)
     {
       EXPECT_GT(std::stod(rows[r][15]), 0.0);

@@ -92,6 +92,12 @@ enum class StepperType
   kImplicitFixed  // the same with a fixed step, for hard real time
 };
 
+// The implicit steppers take whole steps of their own (the node interpolates its outputs between them).
+inline bool isImplicit(StepperType s)
+{
+  return s == StepperType::kImplicit || s == StepperType::kImplicitFixed;
+}
+
 enum class ImplicitMethod
 {
   kRos34pw2,  // 4 stages, order 3, embedded order 2 (Rang and Angermann 2005) (default)
