@@ -187,5 +187,28 @@ tow_sim::FinLoads toFinLoads(const TowSnapshot& s, const std_msgs::Header& heade
   return loads;
 }
 
+geometry_msgs::WrenchStamped toShipTowForce(const TowSnapshot& s, const std_msgs::Header& header)
+{
+  geometry_msgs::WrenchStamped w;
+  w.header = header;
+  w.wrench.force = toVector3(-s.tensions.col(0));
+  w.wrench.torque = toVector3(Eigen::Vector3d::Zero());
+  return w;
+}
+
+geometry_msgs::WrenchStamped toVehicleTowForce(const TowSnapshot& s, const std_msgs::Header& header,
+                                               const std::string& vehicle_frame)
+{
+  const Eigen::Matrix3d R = s.attitude.toRotationMatrix();  // vehicle frame to world
+  const Eigen::Vector3d force_W = s.tensions.col(s.segments);
+  const Eigen::Vector3d arm_W = s.joints.col(s.segments) - s.vehicle.p_cg_W;  // CG to the bail
+  geometry_msgs::WrenchStamped w;
+  w.header = header;
+  w.header.frame_id = vehicle_frame;
+  w.wrench.force = toVector3(R.transpose() * force_W);
+  w.wrench.torque = toVector3(R.transpose() * arm_W.cross(force_W));
+  return w;
+}
+
 }  // namespace ros_conv
 }  // namespace tow_sim

@@ -93,6 +93,8 @@ TowSimNode::TowSimNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   marker_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("cable/markers", 2);
   vehicle_odom_pub_ = nh_.advertise<nav_msgs::Odometry>("vehicle/odom", 10);
   fin_loads_pub_ = nh_.advertise<tow_sim::FinLoads>("vehicle/fin_loads", 10);
+  ship_force_pub_ = nh_.advertise<geometry_msgs::WrenchStamped>("ship/tow_force", 10);
+  vehicle_force_pub_ = nh_.advertise<geometry_msgs::WrenchStamped>("vehicle/tow_force", 10);
   reset_srv_ = pnh_.advertiseService("reset", &TowSimNode::onReset, this);
   pause_srv_ = pnh_.advertiseService("set_paused", &TowSimNode::onSetPaused, this);
   physics_timer_ = nh_.createTimer(ros::Duration(1.0 / params_.physics_rate), [this](const ros::TimerEvent& e)
@@ -459,6 +461,8 @@ void TowSimNode::publishTick(const ros::TimerEvent&)
     last_tf_stamp_ = header.stamp;
   }
   fin_loads_pub_.publish(ros_conv::toFinLoads(snapshot, header, params_.vehicle_frame));
+  ship_force_pub_.publish(ros_conv::toShipTowForce(snapshot, header));
+  vehicle_force_pub_.publish(ros_conv::toVehicleTowForce(snapshot, header, params_.vehicle_frame));
   if (marker_pub_.getNumSubscribers() > 0)
     marker_pub_.publish(makeMarkers(snapshot, config_.vehicle, run_.seabed(), params_, header));
 }

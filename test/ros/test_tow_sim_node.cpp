@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <diagnostic_msgs/DiagnosticArray.h>
+#include <geometry_msgs/WrenchStamped.h>
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
 #include <rosgraph_msgs/Clock.h>
@@ -14,6 +15,8 @@
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
 #include <visualization_msgs/MarkerArray.h>
+
+#include <Eigen/Geometry>
 
 #include <cmath>
 #include <cstdio>
@@ -41,6 +44,7 @@ struct Recorder
   std::map<std::string, tow_sim::CableState> state;
   std::map<std::string, nav_msgs::Odometry> odom;
   std::map<std::string, std::map<ros::Time, nav_msgs::Odometry>> odom_by_stamp;  // the last 100 per node
+  std::map<std::string, std::map<ros::Time, geometry_msgs::WrenchStamped>> ship_force, vehicle_force;  // last 100
   std::map<std::string, int> state_count, marker_count, non_finite_states;
   std::map<std::string, std::string> diagnostics;  // "<node>/<key>" -> value
 };
@@ -82,6 +86,20 @@ public:
                                                            std::lock_guard<std::mutex> lock(rec_.mutex);
                                                            ++rec_.marker_count[n];
                                                          }));
+      for (const char* topic : { "ship/tow_force", "vehicle/tow_force" })
+      {
+        const bool ship = std::string(topic) == "ship/tow_force";
+        subs_.push_back(nh_.subscribe<geometry_msgs::WrenchStamped>(
+            "/" + n + "/" + topic, 50,
+            [this, n, ship](const geometry_msgs::WrenchStamped::ConstPtr& m)
+            {
+              std::lock_guard<std::mutex> lock(rec_.mutex);
+              auto& kept = (ship ? rec_.ship_force : rec_.vehicle_force)[n];
+              kept[m->header.stamp] = *m;
+              if (kept.size() > 100)
+                kept.erase(kept.begin());
+            }));
+      }
       fin_pubs_[n] = nh_.advertise<tow_sim::FinCommand>("/" + n + "/fins/command", 5);
     }
     subs_.push_back(
@@ -325,6 +343,60 @@ TEST(TowSimNode, TheImplicitStepperPublishesAtTheClockFromItsOwnSteps)
   EXPECT_NEAR(implicit.tension_ship, dopri5.tension_ship, 5e-3 * dopri5.tension_ship);
   EXPECT_NEAR(implicit.layback, dopri5.layback, 1e-3 * dopri5.layback);
   EXPECT_TRUE(allFinite(implicit));
+}
+
+// The cable's forces out: on the ship -T_1 at the tow point (world frame), on the vehicle T_{nu+1} at the
+// bail in the vehicle frame with its moment about the CG; checked against cable/state and vehicle/odom of
+// the same stamp (the elevator node's vehicle is pitched by its fins).
+TEST(TowSimNode, PublishesTheTowForcesOnShipAndVehicle)
+{
+  world->advance(1.0);
+  const ros::WallTime give_up = ros::WallTime::now() + ros::WallDuration(5.0);
+  for (const char* node : { "base", "elevator" })
+  {
+    const std::string n = node;
+    tow_sim::CableState state;
+    nav_msgs::Odometry odom;
+    geometry_msgs::WrenchStamped ship, vehicle;
+    for (bool found = false; !found;)
+    {
+      {
+        std::lock_guard<std::mutex> lock(world->rec_.mutex);
+        state = world->rec_.state[n];
+        const ros::Time stamp = state.header.stamp;
+        found = world->rec_.ship_force[n].count(stamp) && world->rec_.vehicle_force[n].count(stamp) &&
+                world->rec_.odom_by_stamp[n].count(stamp);
+        if (found)
+        {
+          ship = world->rec_.ship_force[n][stamp];
+          vehicle = world->rec_.vehicle_force[n][stamp];
+          odom = world->rec_.odom_by_stamp[n][stamp];
+        }
+      }
+      ASSERT_TRUE(found || ros::WallTime::now() < give_up) << n << ": no forces stamped as the state";
+      if (!found)
+        ros::WallDuration(0.01).sleep();
+    }
+    const auto vec = [](const geometry_msgs::Vector3& v) { return Eigen::Vector3d(v.x, v.y, v.z); };
+    const auto point = [](const geometry_msgs::Point& p) { return Eigen::Vector3d(p.x, p.y, p.z); };
+    const size_t bail = state.tension_vector.size() - 1;
+    const Eigen::Vector3d T1 = vec(state.tension_vector.front()), Tb = vec(state.tension_vector[bail]);
+    const Eigen::Quaterniond q(odom.pose.pose.orientation.w, odom.pose.pose.orientation.x,
+                               odom.pose.pose.orientation.y, odom.pose.pose.orientation.z);
+    const Eigen::Vector3d force_W = q * vec(vehicle.wrench.force), torque_W = q * vec(vehicle.wrench.torque);
+    const Eigen::Vector3d arm_W = point(state.joints[bail]) - point(odom.pose.pose.position);
+    std::printf("%s: ship tow force %.2f N (T_1 %.2f N), vehicle %.2f N (bail %.2f N), moment about the CG %.2f N m\n",
+                node, vec(ship.wrench.force).norm(), state.tension_ship, force_W.norm(), state.tension_vehicle,
+                torque_W.norm());
+    EXPECT_EQ(ship.header.frame_id, "odom");
+    EXPECT_EQ(vehicle.header.frame_id, n + "_vehicle");
+    EXPECT_LT((vec(ship.wrench.force) + T1).norm(), 1e-9 * T1.norm());
+    EXPECT_LT(vec(ship.wrench.torque).norm(), 1e-12);
+    EXPECT_LT((force_W - Tb).norm(), 1e-6 * Tb.norm());
+    EXPECT_NEAR(force_W.norm(), state.tension_vehicle, 1e-6 * state.tension_vehicle);
+    EXPECT_LT((torque_W - arm_W.cross(Tb)).norm(), 1e-6 * std::max(1.0, arm_W.norm() * Tb.norm()));
+    EXPECT_GT(arm_W.norm(), 0.01);  // the bail is not at the CG: the moment is a real check
+  }
 }
 
 TEST(TowSimNode, RejectsBadOdometryAndKeepsRunning)

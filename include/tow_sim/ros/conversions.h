@@ -7,6 +7,7 @@
 #include <geometry_msgs/Quaternion.h>
 #include <geometry_msgs/TransformStamped.h>
 #include <geometry_msgs/Vector3.h>
+#include <geometry_msgs/WrenchStamped.h>
 #include <nav_msgs/Odometry.h>
 #include <std_msgs/ColorRGBA.h>
 #include <xmlrpcpp/XmlRpcValue.h>
@@ -69,6 +70,13 @@ nav_msgs::Odometry toVehicleOdometry(const TowSnapshot& s, const std_msgs::Heade
 geometry_msgs::TransformStamped toVehicleTransform(const TowSnapshot& s, const std_msgs::Header& header,
                                                    const std::string& child_frame);
 tow_sim::FinLoads toFinLoads(const TowSnapshot& s, const std_msgs::Header& header, const std::string& vehicle_frame);
+// The cable's force on the ship, -T_1, applied at the tow point: in the world frame of `header`, torque
+// zero (the moment about the tow point; a ship simulator adds its own lever arm).
+geometry_msgs::WrenchStamped toShipTowForce(const TowSnapshot& s, const std_msgs::Header& header);
+// The cable's pull on the vehicle, T_{nu+1} at the bail, in the vehicle frame (the CG, body axes as
+// published on tf): the force and its moment about the CG.
+geometry_msgs::WrenchStamped toVehicleTowForce(const TowSnapshot& s, const std_msgs::Header& header,
+                                               const std::string& vehicle_frame);
 
 }  // namespace ros_conv
 }  // namespace tow_sim

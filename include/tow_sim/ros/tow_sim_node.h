@@ -105,6 +105,7 @@ private:
 
   ros::Subscriber odom_sub_, fin_sub_, current_sub_, current_profile_sub_, winch_sub_;
   ros::Publisher state_pub_, marker_pub_, vehicle_odom_pub_, fin_loads_pub_;
+  ros::Publisher ship_force_pub_, vehicle_force_pub_;  // the cable's forces on the ship and the vehicle
   ros::ServiceServer reset_srv_, pause_srv_;
   ros::Timer physics_timer_, publish_timer_, status_timer_;
   tf2_ros::TransformBroadcaster tf_broadcaster_;
