@@ -33,7 +33,11 @@ const ParamTable<CableParams>& cableParams()
                   "C_a; e = C_a ρ (πD²/4) d (Walton–Polachek)")
           .choice("tangential_drag_model", &C::tangential_drag_model,
                   { { "pode", TangentialDragModel::kPode }, { "quadratic", TangentialDragModel::kQuadratic } },
-                  "pode (the report's): C₁ d ‖u‖² along s against the tangential flow; quadratic: −C₁ d |u·s|(u·s) s");
+                  "pode (the report's): C₁ d ‖u‖² along s against the tangential flow; quadratic: −C₁ d |u·s|(u·s) s")
+          .optionalNumber("safe_working_load", &C::safe_working_load, "N", 0.0, 1e9, kOpen, "unset",
+                          "the node's diagnostics WARN while a tension exceeds it")
+          .optionalNumber("breaking_load", &C::breaking_load, "N", 0.0, 1e9, kOpen, "unset",
+                          "≥ safe_working_load; the node's diagnostics report an ERROR while a tension exceeds it");
   return table;
 }
 

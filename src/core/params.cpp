@@ -91,6 +91,9 @@ void validate(const Environment& env, const std::string& p)
 void validate(const CableParams& c, const std::string& p)
 {
   validateParams(cableParams(), c, p);
+  if (c.safe_working_load && c.breaking_load)
+    requireInRange(p + ".breaking_load", *c.breaking_load, *c.safe_working_load, 1e9,
+                   "[N] (at least safe_working_load)");
 }
 
 void validate(const EndElementParams& e, const std::string& p)

@@ -448,6 +448,7 @@ void TowSimNode::publishTick(const ros::TimerEvent&)
   last_ = snapshot;
   have_last_ = true;
   max_length_error_ = std::max(max_length_error_, snapshot.max_length_error);
+  noteTensionLimits(snapshot);
   std_msgs::Header header;
   header.stamp = absolute(snapshot.t);
   header.frame_id = params_.world_frame;
@@ -507,6 +508,35 @@ void TowSimNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
   // Over every output since the last report (the diagnostics run at 1 Hz, the outputs faster).
   status.add("max relative length error", max_length_error_);
   max_length_error_ = 0.0;
+  diagnoseTensionLimits(status);
+}
+
+void TowSimNode::noteTensionLimits(const TowSnapshot& snapshot)
+{
+  const TensionLimitCheck now = checkTensionLimits(config_.cable, snapshot.tensions);
+  tension_limit_ = TensionLimitCheck::worse(tension_limit_, now);
+  if (now.level == TensionLimitCheck::Level::kAboveBreakingLoad)
+    ROS_ERROR_THROTTLE(5.0, "tow_sim: cable tension %.0f N at joint %d exceeds the breaking load %.0f N (t = %.1f s)",
+                       now.largest, now.joint + 1, *config_.cable.breaking_load, snapshot.t);
+  else if (now.level == TensionLimitCheck::Level::kAboveWorkingLoad)
+    ROS_WARN_THROTTLE(5.0,
+                      "tow_sim: cable tension %.0f N at joint %d exceeds the safe working load %.0f N (t = %.1f s)",
+                      now.largest, now.joint + 1, *config_.cable.safe_working_load, snapshot.t);
+}
+
+void TowSimNode::diagnoseTensionLimits(diagnostic_updater::DiagnosticStatusWrapper& status)
+{
+  using diagnostic_msgs::DiagnosticStatus;
+  const TensionLimitCheck& worst = tension_limit_;
+  if (worst.level == TensionLimitCheck::Level::kAboveBreakingLoad)
+    status.mergeSummaryf(DiagnosticStatus::ERROR, "cable tension %.0f N above the breaking load", worst.largest);
+  else if (worst.level == TensionLimitCheck::Level::kAboveWorkingLoad)
+    status.mergeSummaryf(DiagnosticStatus::WARN, "cable tension %.0f N above the safe working load", worst.largest);
+  status.add("largest tension [N]", worst.largest);
+  status.add("largest tension at joint", worst.joint + 1);
+  status.add("safe working load [N]", config_.cable.safe_working_load ? *config_.cable.safe_working_load : 0.0);
+  status.add("breaking load [N]", config_.cable.breaking_load ? *config_.cable.breaking_load : 0.0);
+  tension_limit_ = TensionLimitCheck();
 }
 
 }  // namespace tow_sim

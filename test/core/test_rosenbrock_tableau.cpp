@@ -69,8 +69,8 @@ void checkTableau(const RosenbrockTableau& rw)
 {
   const double exact_j = localOrder(rw, 1.0), zero_j = localOrder(rw, 0.0), estimate = estimateOrder(rw);
   const double stiff = scalarStep(rw, -1e12, -1e12, 1.0).y_next;
-  std::printf("%s: local error order %.2f (exact J), %.2f (J = 0); estimate %.2f; R(-1e12) = %.2e\n",
-              rw.name.c_str(), exact_j, zero_j, estimate, stiff);
+  std::printf("%s: local error order %.2f (exact J), %.2f (J = 0); estimate %.2f; R(-1e12) = %.2e\n", rw.name.c_str(),
+              exact_j, zero_j, estimate, stiff);
   EXPECT_NEAR(exact_j, rw.order + 1, 0.15) << rw.name;
   EXPECT_NEAR(zero_j, rw.order + 1, 0.15) << rw.name;
   EXPECT_NEAR(estimate, rw.embedded_order + 1, 0.15) << rw.name;
@@ -95,7 +95,10 @@ void checkTableau(const RosenbrockTableau& rw)
   EXPECT_NEAR(sum, 1.0, 1e-12) << rw.name;
 }
 
-TEST(RosenbrockTableau, Ros2IsSecondOrderLStableWithAFirstOrderEstimate) { checkTableau(ros2Tableau()); }
+TEST(RosenbrockTableau, Ros2IsSecondOrderLStableWithAFirstOrderEstimate)
+{
+  checkTableau(ros2Tableau());
+}
 
 TEST(RosenbrockTableau, Ros34pw2IsThirdOrderAsAWMethodLStableWithASecondOrderEstimate)
 {

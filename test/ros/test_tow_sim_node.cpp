@@ -89,16 +89,16 @@ public:
       for (const char* topic : { "ship/tow_force", "vehicle/tow_force" })
       {
         const bool ship = std::string(topic) == "ship/tow_force";
-        subs_.push_back(nh_.subscribe<geometry_msgs::WrenchStamped>(
-            "/" + n + "/" + topic, 50,
-            [this, n, ship](const geometry_msgs::WrenchStamped::ConstPtr& m)
-            {
-              std::lock_guard<std::mutex> lock(rec_.mutex);
-              auto& kept = (ship ? rec_.ship_force : rec_.vehicle_force)[n];
-              kept[m->header.stamp] = *m;
-              if (kept.size() > 100)
-                kept.erase(kept.begin());
-            }));
+        subs_.push_back(
+            nh_.subscribe<geometry_msgs::WrenchStamped>("/" + n + "/" + topic, 50,
+                                                        [this, n, ship](const geometry_msgs::WrenchStamped::ConstPtr& m)
+                                                        {
+                                                          std::lock_guard<std::mutex> lock(rec_.mutex);
+                                                          auto& kept = (ship ? rec_.ship_force : rec_.vehicle_force)[n];
+                                                          kept[m->header.stamp] = *m;
+                                                          if (kept.size() > 100)
+                                                            kept.erase(kept.begin());
+                                                        }));
       }
       fin_pubs_[n] = nh_.advertise<tow_sim::FinCommand>("/" + n + "/fins/command", 5);
     }
@@ -381,8 +381,8 @@ TEST(TowSimNode, PublishesTheTowForcesOnShipAndVehicle)
     const auto point = [](const geometry_msgs::Point& p) { return Eigen::Vector3d(p.x, p.y, p.z); };
     const size_t bail = state.tension_vector.size() - 1;
     const Eigen::Vector3d T1 = vec(state.tension_vector.front()), Tb = vec(state.tension_vector[bail]);
-    const Eigen::Quaterniond q(odom.pose.pose.orientation.w, odom.pose.pose.orientation.x,
-                               odom.pose.pose.orientation.y, odom.pose.pose.orientation.z);
+    const Eigen::Quaterniond q(odom.pose.pose.orientation.w, odom.pose.pose.orientation.x, odom.pose.pose.orientation.y,
+                               odom.pose.pose.orientation.z);
     const Eigen::Vector3d force_W = q * vec(vehicle.wrench.force), torque_W = q * vec(vehicle.wrench.torque);
     const Eigen::Vector3d arm_W = point(state.joints[bail]) - point(odom.pose.pose.position);
     std::printf("%s: ship tow force %.2f N (T_1 %.2f N), vehicle %.2f N (bail %.2f N), moment about the CG %.2f N m\n",
@@ -397,6 +397,41 @@ TEST(TowSimNode, PublishesTheTowForcesOnShipAndVehicle)
     EXPECT_LT((torque_W - arm_W.cross(Tb)).norm(), 1e-6 * std::max(1.0, arm_W.norm() * Tb.norm()));
     EXPECT_GT(arm_W.norm(), 0.01);  // the bail is not at the CG: the moment is a real check
   }
+}
+
+// cable.safe_working_load (winch node: 500 N) and cable.breaking_load (rudder node: 800 N) against tows of
+// ~900 N: diagnostics WARN and ERROR with the largest tension; the base node, without limits, neither.
+TEST(TowSimNode, TensionLimitsShowInDiagnostics)
+{
+  auto diagnostic = [](const std::string& node, const std::string& key)
+  {
+    for (const auto& kv : world->rec_.diagnostics)
+      if (kv.first.find(node + "/tow_sim") != std::string::npos && kv.first.find(key) != std::string::npos)
+        return kv.second;
+    return std::string();
+  };
+  std::string winch, rudder, base;
+  for (int i = 0; i < 20; ++i)
+  {
+    world->advance(0.5);
+    std::lock_guard<std::mutex> lock(world->rec_.mutex);
+    winch = diagnostic("winch", "/summary");
+    rudder = diagnostic("rudder", "/summary");
+    base = diagnostic("base", "/summary");
+    if (winch.find("safe working load") != std::string::npos && rudder.find("breaking load") != std::string::npos)
+      break;
+  }
+  std::lock_guard<std::mutex> lock(world->rec_.mutex);
+  const double winch_largest = std::atof(diagnostic("winch", "largest tension [N]").c_str());
+  const double rudder_largest = std::atof(diagnostic("rudder", "largest tension [N]").c_str());
+  std::printf("tension limits: winch '%s' (%.0f N), rudder '%s' (%.0f N), base '%s'\n", winch.c_str(), winch_largest,
+              rudder.c_str(), rudder_largest, base.c_str());
+  EXPECT_NE(winch.find("above the safe working load"), std::string::npos) << winch;
+  EXPECT_NE(rudder.find("above the breaking load"), std::string::npos) << rudder;
+  EXPECT_GT(winch_largest, 500.0);
+  EXPECT_GT(rudder_largest, 800.0);
+  EXPECT_EQ(base.find("load"), std::string::npos) << base;
+  EXPECT_EQ(diagnostic("base", "safe working load [N]"), "0");
 }
 
 TEST(TowSimNode, RejectsBadOdometryAndKeepsRunning)

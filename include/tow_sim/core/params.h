@@ -59,6 +59,8 @@ struct CableParams
   std::optional<double> c2;                   // [N s^2/m^3] C2 given directly (overrides C_dn), >= 0
   double added_mass_coefficient = 1.0;        // [-] C_a, >= 0 .. 10 (e = C_a rho pi D^2/4 d)
   TangentialDragModel tangential_drag_model = TangentialDragModel::kPode;
+  std::optional<double> safe_working_load;  // [N] the node warns above it (unset: no limit), > 0 .. 1e9
+  std::optional<double> breaking_load;      // [N] the node reports an error above it, >= safe_working_load .. 1e9
 
   double segmentLength() const { return length / segments; }
   double c1Value(const Environment& env) const;  // [N s^2/m^3]

@@ -167,7 +167,7 @@ private:
   // The implicit stepper's step: false when rejected (dt_ then holds the step to try next).
   bool stepImplicit(double t_end, double winch_step, StepReport& report);
   void implicitStages(double h);  // y_next_ and error_ of the step h (factored)
-  bool implicit() const;  // numerics.stepper is implicit or implicit_fixed
+  bool implicit() const;          // numerics.stepper is implicit or implicit_fixed
   double errorNorm(const StateVector& error, const StateVector& y_next, double t_next) const;  // weighted RMS
   void linearise();                             // the implicit stepper's J at the current state (after refreshOutputs)
   double largestRelativeSpeed(double t) const;  // [m/s] fastest joint relative to the tow point
@@ -188,8 +188,8 @@ private:
   Eigen::Matrix3Xd tensions_, accelerations_;
   std::vector<double> multipliers_;  // each element's axial multiplier at the current state [N]
   ImplicitStepper implicit_;
-  const RosenbrockTableau* tableau_ = nullptr;                 // the implicit steppers' method
-  std::vector<StateVector> stage_k_;                           // the implicit step's workspace
+  const RosenbrockTableau* tableau_ = nullptr;  // the implicit steppers' method
+  std::vector<StateVector> stage_k_;            // the implicit step's workspace
   StateVector stage_y_, stage_f_, y_next_, error_;
 };
 

@@ -25,6 +25,7 @@
 #include "tow_sim/config/node_params.h"
 #include "tow_sim/core/odometry_check.h"
 #include "tow_sim/core/ship_track.h"
+#include "tow_sim/core/tension_limits.h"
 #include "tow_sim/core/tow_run.h"
 
 namespace tow_sim
@@ -46,6 +47,10 @@ private:
   void physicsTick(const ros::TimerEvent& event);
   void publishTick(const ros::TimerEvent& event);
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
+  // cable.safe_working_load and cable.breaking_load: checked at each output (a throttled log), the worst
+  // since the previous report merged into the diagnostics' summary (WARN, ERROR) with its values.
+  void noteTensionLimits(const TowSnapshot& snapshot);
+  void diagnoseTensionLimits(diagnostic_updater::DiagnosticStatusWrapper& status);
   void printStatus();  // the status line (print_status)
 
   void start(double t);  // the initial shape at the ship's pose at time t (relative)
@@ -101,6 +106,7 @@ private:
   std::deque<double> restart_walls_;  // [s] wall times of the recent restarts (at most kRestartBurst)
   bool diverging_ = false;            // kRestartBurst restarts within kRestartWindow: holding until ~reset
   double max_length_error_ = 0.0;     // [-] over the outputs since the last diagnostics report
+  TensionLimitCheck tension_limit_;   // the worst over the outputs since the last diagnostics report
   bool holding_ = false;
 
   ros::Subscriber odom_sub_, fin_sub_, current_sub_, current_profile_sub_, winch_sub_;
