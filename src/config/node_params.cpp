@@ -33,6 +33,9 @@ const ParamTable<NodeParams>& nodeParams()
                   "past the newest odometry; then the simulation holds")
           .number("max_ship_speed", &N::max_ship_speed, "m/s", 0.0, 1000.0, kOpen,
                   "odometry faster than this, or jumping farther, is rejected")
+          .integer("reacquire_after", &N::reacquire_after, "messages", 2, 1000,
+                   "odometry refused as a jump this many times in a row, consistent among itself, is the ship: "
+                   "the cable is laid out again there (a GPS's (0, 0, 0) before its fix)")
           .number("max_odom_age", &N::max_odom_age, "s", 0.0, 1e6, kOpen,
                   "odometry stamped more than this before the clock is rejected (a publisher on another clock)")
           .choice("initial_shape", &N::initial_shape,

@@ -52,11 +52,27 @@ OdometryResult checkOdometry(const OdometryInput& in, const OdometryLimits& limi
     const double dt = in.t - track.newestTime();
     const double jump = (r.tow_p_W - track(in.t).p_W).norm();
     if (!(jump <= limits.max_ship_speed * dt + limits.max_jump_slack))
+    {
       os << "the tow point jumped " << jump << " m from where the previous message put it";
+      r.jumped = true;
+    }
   }
   r.reason = os.str();
   r.accepted = r.reason.empty();
   return r;
+}
+
+bool TrackReacquisition::jumped(double t, const Eigen::Vector3d& tow_p_W, const OdometryLimits& limits)
+{
+  const bool consistent = count_ > 0 && t > last_t_ &&
+                          (tow_p_W - last_p_).norm() <= limits.max_ship_speed * (t - last_t_) + limits.max_jump_slack;
+  count_ = consistent ? count_ + 1 : 1;
+  last_t_ = t;
+  last_p_ = tow_p_W;
+  if (count_ < needed_)
+    return false;
+  count_ = 0;
+  return true;
 }
 
 }  // namespace tow_sim

@@ -75,7 +75,8 @@ TowSimNode::TowSimNode(ros::NodeHandle nh, ros::NodeHandle pnh)
       config_(readConfig(pnh, params_)),
       ship_(std::make_shared<ShipHistory>(params_.max_extrapolation, kTrackCapacity)),
       run_(config_, ship_, initialShape(params_)),
-      whole_steps_(isImplicit(config_.numerics.stepper))
+      whole_steps_(isImplicit(config_.numerics.stepper)),
+      reacquisition_(params_.reacquire_after)
 {
   odometry_limits_.world_frame = params_.world_frame;
   odometry_limits_.tow_point_S = params_.tow_point_S;
@@ -173,7 +174,15 @@ void TowSimNode::onOdometry(const nav_msgs::Odometry::ConstPtr& msg)
   in.q_wxyz = Eigen::Vector4d(pose.orientation.w, pose.orientation.x, pose.orientation.y, pose.orientation.z);
   in.v_S = Eigen::Vector3d(twist.linear.x, twist.linear.y, twist.linear.z);
   in.w_S = Eigen::Vector3d(twist.angular.x, twist.angular.y, twist.angular.z);
-  const OdometryResult r = checkOdometry(in, odometry_limits_, ship_->track(), relative(now));
+  OdometryResult r = checkOdometry(in, odometry_limits_, ship_->track(), relative(now));
+  if (r.accepted || !r.jumped)
+    reacquisition_.reset();
+  else if (reacquisition_.jumped(in.t, r.tow_p_W, odometry_limits_))
+  {
+    forgetShip("ship odometry stayed " + std::to_string(params_.reacquire_after) +
+               " messages in a row away from the track (a wrong first fix, a ship moved by a reset?)");
+    r = checkOdometry(in, odometry_limits_, ship_->track(), relative(now));
+  }
   if (!r.accepted)
   {
     ++rejected_messages_;

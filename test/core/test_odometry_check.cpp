@@ -87,5 +87,42 @@ TEST(OdometryCheck, RefusesEachKindOfBadMessage)
   EXPECT_NEAR(r.q_WS.norm(), 1.0, 1e-15);
 }
 
+// A GPS driver's (0, 0, 0) first, then the real track 1 km away: every real message is refused as a
+// jump until `needed` consistent ones in a row say the ship is there; a lone outlier does not count.
+TEST(OdometryCheck, ReacquiresATrackThatStaysElsewhere)
+{
+  const OdometryLimits limits;
+  ShipTrack track;
+  OdometryInput first = good(0.0);
+  first.p_W.setZero();
+  OdometryResult r = checkOdometry(first, limits, track, 0.0);
+  ASSERT_TRUE(r.accepted) << r.reason;
+  track.add(0.0, r.tow_p_W, r.tow_v_W);
+  TrackReacquisition reacquire(5);
+  const Eigen::Vector3d offset(1000.0, 500.0, 0.0);
+  int refused = 0;
+  bool again = false;
+  for (int i = 1; i <= 10 && !again; ++i)
+  {
+    OdometryInput real = good(0.1 * i);
+    real.p_W += offset;
+    r = checkOdometry(real, limits, track, real.t);
+    ASSERT_FALSE(r.accepted);
+    ASSERT_TRUE(r.jumped) << r.reason;
+    again = reacquire.jumped(real.t, r.tow_p_W, limits);
+    refused += again ? 0 : 1;
+  }
+  EXPECT_TRUE(again);
+  EXPECT_EQ(refused, 4);  // the fifth consistent message re-acquires
+  // Outliers that disagree with each other never add up.
+  TrackReacquisition outliers(3);
+  for (int i = 0; i < 10; ++i)
+    EXPECT_FALSE(outliers.jumped(0.1 * i, Eigen::Vector3d(i % 2 ? 1000.0 : -1000.0, 0.0, 0.0), limits));
+  // A refusal for another reason is not a jump.
+  OdometryInput nan = good(2.0);
+  nan.v_S.x() = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(checkOdometry(nan, limits, track, 2.0).jumped);
+}
+
 }  // namespace
 }  // namespace tow_sim

@@ -34,7 +34,9 @@
 
 namespace
 {
-const char* const kNodes[] = { "base", "elevator", "rudder", "robust", "unstable", "winch", "dopri5" };
+const char* const kNodes[] = { "base", "elevator", "rudder", "robust", "unstable", "winch", "dopri5", "gps" };
+// The gps node's ship: the same track 1 km east and 500 m north, after a first fix at (0, 0, 0).
+const double kGpsOffsetX = 1000.0, kGpsOffsetY = 500.0;
 
 bool allFinite(const tow_sim::CableState& s);
 
@@ -57,6 +59,7 @@ public:
     clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
     odom_pub_ = nh_.advertise<nav_msgs::Odometry>("/ship/odom", 50);
     robust_odom_pub_ = nh_.advertise<nav_msgs::Odometry>("/robust/ship/odom", 50);
+    gps_odom_pub_ = nh_.advertise<nav_msgs::Odometry>("/gps/ship/odom", 50);
     for (const char* name : kNodes)
     {
       const std::string n = name;
@@ -119,7 +122,7 @@ public:
     // Wait until every node listens to the ship before the first odometry, so all start alike.
     const ros::WallTime give_up = ros::WallTime::now() + ros::WallDuration(60.0);
     while ((odom_pub_.getNumSubscribers() < 5 || robust_odom_pub_.getNumSubscribers() < 1 ||
-            clock_pub_.getNumSubscribers() < 6) &&
+            gps_odom_pub_.getNumSubscribers() < 1 || clock_pub_.getNumSubscribers() < 6) &&
            ros::WallTime::now() < give_up)
       ros::WallDuration(0.05).sleep();
     // Each node starts at the first odometry: tick until every one has published (not a lock-step yet).
@@ -139,6 +142,7 @@ public:
       {
         odom_pub_.publish(shipOdometry());
         robust_odom_pub_.publish(shipOdometry());
+        publishGps();
       }
       ros::WallDuration(0.01).sleep();
     }
@@ -166,6 +170,7 @@ public:
           nav_msgs::Odometry odom = shipOdometry();
           odom_pub_.publish(odom);
           robust_odom_pub_.publish(odom);
+          publishGps();
         }
       }
       waitForEveryNode(before, wait);
@@ -185,6 +190,20 @@ public:
     return odom;
   }
 
+  // The gps node's odometry: (0, 0, 0) first (a driver before its fix), then the ship's track offset.
+  void publishGps()
+  {
+    nav_msgs::Odometry odom = shipOdometry();
+    if (gps_sent_++ == 0)
+      odom.pose.pose.position.x = odom.pose.pose.position.y = 0.0;
+    else
+    {
+      odom.pose.pose.position.x += kGpsOffsetX;
+      odom.pose.pose.position.y += kGpsOffsetY;
+    }
+    gps_odom_pub_.publish(odom);
+  }
+
   void command(const std::string& node, double rudder, double elevator)
   {
     tow_sim::FinCommand cmd;
@@ -200,7 +219,8 @@ public:
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_{ tf_buffer_ };
   double time_ = 100.0;
-  ros::Publisher robust_odom_pub_;
+  ros::Publisher robust_odom_pub_, gps_odom_pub_;
+  int gps_sent_ = 0;
 
 private:
   void waitForEveryNode(const std::map<std::string, int>& before, double wait)
@@ -571,6 +591,34 @@ int rejectedMessages(const std::string& node)
     if (kv.first.find(node) != std::string::npos && kv.first.find("rejected messages") != std::string::npos)
       count = std::atoi(kv.second.c_str());
   return count;
+}
+
+// A GPS driver's (0, 0, 0) before its fix, then the real track 1.1 km away: the node refuses the real
+// messages as jumps until reacquire_after (5) of them in a row agree, then lays the cable out on the
+// real track: 4 refused, the tow point on the track.
+TEST(TowSimNode, ReacquiresTheShipAfterAWrongFirstFix)
+{
+  world->advance(1.0);
+  int rejected = -1;
+  for (int i = 0; i < 30 && rejected != 4; ++i)  // diagnostics come at 1 Hz of wall time
+  {
+    {
+      std::lock_guard<std::mutex> lock(world->rec_.mutex);
+      rejected = rejectedMessages("gps");
+    }
+    if (rejected != 4)
+      ros::WallDuration(0.1).sleep();
+  }
+  std::lock_guard<std::mutex> lock(world->rec_.mutex);
+  const tow_sim::CableState& s = world->rec_.state["gps"];
+  const double t = s.header.stamp.toSec();
+  const Eigen::Vector3d tow(s.joints[0].x, s.joints[0].y, s.joints[0].z);
+  const Eigen::Vector3d expected(2.0 * (t - 100.0) + kGpsOffsetX - 20.0, kGpsOffsetY, 0.0);
+  std::printf("gps node: %d messages refused, tow point %.3f m from the real track at t = %.1f s\n", rejected,
+              (tow - expected).norm(), t);
+  EXPECT_EQ(rejected, 4);
+  EXPECT_LT((tow - expected).norm(), 0.1);
+  EXPECT_TRUE(allFinite(s));
 }
 
 TEST(TowSimNode, WinchPaysOutOverTheSeabedAndTheStateSaysSo)

@@ -19,10 +19,11 @@ struct NodeParams
   double physics_rate = 50.0;                                      // [Hz] integration ticks
   double publish_rate = 10.0;                                      // [Hz] state, markers, odometry, tf
   double odom_delay = 0.2;                                         // [s] the simulation runs this far behind the clock
-  double max_command_lag = 0.1;               // [s] cap on an implicit step: commands act within it
-  double max_extrapolation = 1.0;             // [s] past the newest odometry, then hold
-  double max_ship_speed = 25.0;               // [m/s] odometry implying a faster jump is rejected
-  double max_odom_age = 10.0;                 // [s] odometry stamped earlier than now - this is rejected
+  double max_command_lag = 0.1;    // [s] cap on an implicit step: commands act within it
+  double max_extrapolation = 1.0;  // [s] past the newest odometry, then hold
+  double max_ship_speed = 25.0;    // [m/s] odometry implying a faster jump is rejected
+  int reacquire_after = 5;         // [messages] consistent ones away from the track in a row re-acquire the ship
+  double max_odom_age = 10.0;      // [s] odometry stamped earlier than now - this is rejected
   std::string initial_shape = "equilibrium";  // equilibrium | line | hanging
   double initial_angle = 0.5;                 // [rad] below the horizontal for "line" (and the fallback)
   double tension_color_max = 5000.0;          // [N] red end of the cable colour scale

@@ -34,7 +34,8 @@ struct OdometryLimits
 struct OdometryResult
 {
   bool accepted = false;
-  std::string reason;  // why not, naming the field
+  bool jumped = false;  // refused only because it is too far from the track (see TrackReacquisition)
+  std::string reason;   // why not, naming the field
   Eigen::Vector3d tow_p_W = Eigen::Vector3d::Zero(), tow_v_W = Eigen::Vector3d::Zero();
   Eigen::Quaterniond q_WS = Eigen::Quaterniond::Identity();  // normalised
 };
@@ -43,5 +44,28 @@ struct OdometryResult
 // stamps against the track (no duplicates or reordering), stamps from the future or the far past, speed and jumps;
 // gives the tow point's position and velocity for an accepted sample. Never throws.
 OdometryResult checkOdometry(const OdometryInput& in, const OdometryLimits& limits, const ShipTrack& track, double now);
+
+// When the track itself is wrong (a GPS driver's (0, 0, 0) before its fix, a ship teleported by a
+// simulator reset), every later message is refused as a jump. This counts such refusals: when `needed`
+// of them in a row are consistent with each other (each within max_ship_speed x dt + max_jump_slack of
+// the one before), the ship is elsewhere for good and the track should be dropped and started again
+// from the last of them. Any accepted message, or one refused for another reason, starts the count anew.
+class TrackReacquisition
+{
+public:
+  explicit TrackReacquisition(int needed) : needed_(needed) {}
+
+  // A message refused as a jump, its stamp t and tow point: true when it completes `needed` in a row (the
+  // count then starts anew).
+  bool jumped(double t, const Eigen::Vector3d& tow_p_W, const OdometryLimits& limits);
+  void reset() { count_ = 0; }
+  int count() const { return count_; }
+
+private:
+  int needed_;
+  int count_ = 0;
+  double last_t_ = 0.0;
+  Eigen::Vector3d last_p_ = Eigen::Vector3d::Zero();
+};
 
 }  // namespace tow_sim

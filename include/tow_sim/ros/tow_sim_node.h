@@ -81,6 +81,7 @@ private:
   // With an implicit stepper the run advances in the stepper's own steps, past the clock, and the outputs
   // are published interpolated between the last two step ends (before_, after_).
   bool whole_steps_ = false;
+  TrackReacquisition reacquisition_;  // after reacquire_after consistent jumps, the ship is started again
   TowSnapshot before_, after_;
   bool have_after_ = false;  // after_ is of the current run
   bool have_steps_ = false;  // and so is before_
