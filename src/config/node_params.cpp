@@ -47,6 +47,11 @@ const ParamTable<NodeParams>& nodeParams()
           .number("force_arrow_scale", &N::force_arrow_scale, "m/N", 0.0, 10.0, kOpen, "tow-force arrow per newton")
           .number("cable_marker_width", &N::cable_marker_width, "m", 0.0, 100.0, kOpen, "drawn cable width")
           .number("vehicle_diameter", &N::vehicle_diameter, "m", 0.0, 100.0, kOpen, "drawn hull diameter")
+          .number("ship_length", &N::ship_length, "m", 0.0, 1000.0, kOpen,
+                  "drawn ship hull outline, centred on the odometry's reference point")
+          .number("ship_beam", &N::ship_beam, "m", 0.0, 200.0, kOpen, "drawn ship hull width")
+          .number("trail_duration", &N::trail_duration, "s", 0.0, 86400.0, kClosed,
+                  "drawn tracks of the ship and the vehicle over this time (0: none)")
           .boolean("print_status", &N::print_status, "a status line each second (the launch file sets it)");
   return table;
 }

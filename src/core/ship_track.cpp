@@ -6,6 +6,11 @@
 
 namespace tow_sim
 {
+namespace
+{
+constexpr double kPi = 3.14159265358979323846;
+}  // namespace
+
 ShipTrack::ShipTrack(double max_extrapolation, size_t capacity)
     : max_extrapolation_(max_extrapolation), capacity_(std::max<size_t>(capacity, 3))
 {
@@ -151,19 +156,23 @@ ShipPose ShipHistory::pose(double t) const
   if (times_.empty())
     return ShipPose();
   const auto upper = std::upper_bound(times_.begin(), times_.end(), t);
-  const size_t next = std::min(static_cast<size_t>(upper - times_.begin()), times_.size() - 1);
   if (upper == times_.begin())
     return poses_.front();
-  if (upper == times_.end())
+  // Between samples i - 1 and i, or past the newest: on from the last two at their rates, for at most
+  // max_extrapolation (as the tow point's track).
+  const bool beyond = upper == times_.end();
+  if (beyond && times_.size() < 2)
     return poses_.back();
-  const size_t i = static_cast<size_t>(upper - times_.begin());
-  const double w = (t - times_[i - 1]) / (times_[i] - times_[i - 1]);
+  const size_t i = beyond ? times_.size() - 1 : static_cast<size_t>(upper - times_.begin());
+  const double span = times_[i] - times_[i - 1];
+  const double w = beyond ? 1.0 + std::min(t - times_[i], track_.maxExtrapolation()) / span : (t - times_[i - 1]) / span;
   const ShipPose &a = poses_[i - 1], &b = poses_[i];
   ShipPose out;
   out.x = (1.0 - w) * a.x + w * b.x;
   out.y = (1.0 - w) * a.y + w * b.y;
-  out.heading = (1.0 - w) * a.heading + w * b.heading;
-  out.speed = poses_[next].speed;
+  // The shorter way round (headings wrap at +-pi in odometry).
+  out.heading = a.heading + w * std::remainder(b.heading - a.heading, 2.0 * kPi);
+  out.speed = b.speed;
   return out;
 }
 

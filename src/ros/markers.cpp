@@ -144,15 +144,65 @@ visualization_msgs::Marker seabedMarker(const Seabed& seabed, const Eigen::Vecto
     }
   return bottom;
 }
+// The ship as a hull outline at its reference point and heading, on the surface (ns "ship", id 0), and
+// its tow point (id 1).
+void addShip(const TowSnapshot& s, const NodeParams& params, const std_msgs::Header& header,
+             visualization_msgs::MarkerArray& array)
+{
+  using visualization_msgs::Marker;
+  Marker hull = baseMarker(header, "ship", 0, Marker::LINE_STRIP);
+  hull.scale.x = 0.8;
+  hull.color = grey(0.9);
+  const double l = 0.5 * params.ship_length, b = 0.5 * params.ship_beam;
+  // Stern corners, the parallel body to 60 % of the length, a pointed bow (ship frame, FLU).
+  const double outline[][2] = { { -l, -b }, { 0.2 * l, -b }, { l, 0.0 }, { 0.2 * l, b }, { -l, b }, { -l, -b } };
+  const double c = std::cos(s.ship.heading), sn = std::sin(s.ship.heading);
+  for (const auto& xy : outline)
+    hull.points.push_back(
+        ros_conv::toPoint(Eigen::Vector3d(s.ship.x + c * xy[0] - sn * xy[1], s.ship.y + sn * xy[0] + c * xy[1], 0.0)));
+  array.markers.push_back(hull);
+  Marker tow_point = baseMarker(header, "ship", 1, Marker::SPHERE);
+  tow_point.pose.position = ros_conv::toPoint(s.joints.col(0));
+  tow_point.scale.x = tow_point.scale.y = tow_point.scale.z = 2.0;
+  tow_point.color.r = 1.0;
+  tow_point.color.g = 0.8;
+  tow_point.color.b = 0.1;
+  array.markers.push_back(tow_point);
+}
+
+// A trail as a line strip through its samples to the current position (ns "trails").
+visualization_msgs::Marker trailMarker(const TrackTrail& trail, const Eigen::Vector3d& now, int id,
+                                       const std_msgs::ColorRGBA& color, const std_msgs::Header& header)
+{
+  visualization_msgs::Marker line = baseMarker(header, "trails", id, visualization_msgs::Marker::LINE_STRIP);
+  line.scale.x = 0.5;
+  line.color = color;
+  for (const TrackTrail::Sample& sample : trail.samples())
+    line.points.push_back(ros_conv::toPoint(sample.p));
+  line.points.push_back(ros_conv::toPoint(now));
+  return line;
+}
 }  // namespace
 
 visualization_msgs::MarkerArray makeMarkers(const TowSnapshot& s, const VehicleParams& vehicle, const Seabed* seabed,
-                                            const NodeParams& params, const std_msgs::Header& header)
+                                            const NodeParams& params, const std_msgs::Header& header,
+                                            const MarkerTrails& trails)
 {
   visualization_msgs::MarkerArray array;
   array.markers.push_back(cableMarker(s, params, header));
   addVehicle(s, vehicle, params, header, array);
   addForceAndLabels(s, params, header, array);
+  addShip(s, params, header, array);
+  if (trails.ship)
+    array.markers.push_back(trailMarker(*trails.ship, Eigen::Vector3d(s.ship.x, s.ship.y, 0.0), 0, grey(0.6), header));
+  if (trails.vehicle)
+  {
+    std_msgs::ColorRGBA orange;
+    orange.r = 1.0;
+    orange.g = 0.55;
+    orange.a = 1.0;
+    array.markers.push_back(trailMarker(*trails.vehicle, s.vehicle.p_cg_W, 1, orange, header));
+  }
   if (seabed)
     array.markers.push_back(seabedMarker(*seabed, s.vehicle.p_cg_W, header));
   return array;

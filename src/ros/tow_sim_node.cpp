@@ -78,6 +78,11 @@ TowSimNode::TowSimNode(ros::NodeHandle nh, ros::NodeHandle pnh)
       whole_steps_(isImplicit(config_.numerics.stepper)),
       reacquisition_(params_.reacquire_after)
 {
+  if (params_.trail_duration > 0.0)
+  {
+    ship_trail_ = std::make_unique<TrackTrail>(params_.trail_duration);
+    vehicle_trail_ = std::make_unique<TrackTrail>(params_.trail_duration);
+  }
   odometry_limits_.world_frame = params_.world_frame;
   odometry_limits_.tow_point_S = params_.tow_point_S;
   odometry_limits_.max_ship_speed = params_.max_ship_speed;
@@ -156,6 +161,11 @@ void TowSimNode::start(double t)
     ROS_WARN_THROTTLE(5.0, "tow_sim: %s", warning.c_str());
   started_ = true;
   have_last_ = false;  // the status line waits for this run's first output
+  if (ship_trail_)
+  {
+    ship_trail_->clear();
+    vehicle_trail_->clear();
+  }
   have_after_ = have_steps_ = false;
 }
 
@@ -473,8 +483,14 @@ void TowSimNode::publishTick(const ros::TimerEvent&)
   fin_loads_pub_.publish(ros_conv::toFinLoads(snapshot, header, params_.vehicle_frame));
   ship_force_pub_.publish(ros_conv::toShipTowForce(snapshot, header));
   vehicle_force_pub_.publish(ros_conv::toVehicleTowForce(snapshot, header, params_.vehicle_frame));
+  if (ship_trail_)
+  {
+    ship_trail_->add(snapshot.t, Eigen::Vector3d(snapshot.ship.x, snapshot.ship.y, 0.0));
+    vehicle_trail_->add(snapshot.t, snapshot.vehicle.p_cg_W);
+  }
   if (marker_pub_.getNumSubscribers() > 0)
-    marker_pub_.publish(makeMarkers(snapshot, config_.vehicle, run_.seabed(), params_, header));
+    marker_pub_.publish(makeMarkers(snapshot, config_.vehicle, run_.seabed(), params_, header,
+                                    MarkerTrails{ ship_trail_.get(), vehicle_trail_.get() }));
 }
 
 void TowSimNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)

@@ -121,5 +121,29 @@ TEST(ShipTrack, ExtrapolatesForABoundedTimeAndRejectsBadSamples)
   EXPECT_DOUBLE_EQ(track.newestTime(), 1.0);
 }
 
+// The ship's pose between odometry samples takes the shorter way round through +-pi, and past the newest
+// sample goes on at the last two samples' rates for at most max_extrapolation (as the tow point does).
+TEST(ShipHistory, PoseWrapsThroughPiAndExtrapolatesLikeTheTrack)
+{
+  ShipHistory ship(1.0, 100);
+  auto pose = [](double x, double heading)
+  {
+    ShipPose p;
+    p.x = x;
+    p.heading = heading;
+    p.speed = 2.0;
+    return p;
+  };
+  const double pi = 3.14159265358979323846;
+  ship.add(0.0, Eigen::Vector3d(0.0, 0.0, 0.0), Eigen::Vector3d(2.0, 0.0, 0.0), pose(0.0, pi - 0.1));
+  ship.add(1.0, Eigen::Vector3d(2.0, 0.0, 0.0), Eigen::Vector3d(2.0, 0.0, 0.0), pose(2.0, -pi + 0.1));
+  EXPECT_NEAR(std::remainder(ship.pose(0.5).heading - pi, 2.0 * pi), 0.0, 1e-12);  // not 0
+  EXPECT_NEAR(ship.pose(0.5).x, 1.0, 1e-12);
+  EXPECT_NEAR(ship.pose(1.5).x, 3.0, 1e-12);  // on at 2 m/s
+  EXPECT_NEAR(std::remainder(ship.pose(1.5).heading - (-pi + 0.2), 2.0 * pi), 0.0, 1e-12);
+  EXPECT_NEAR(ship.pose(5.0).x, 4.0, 1e-12);  // held after max_extrapolation (1 s)
+  EXPECT_NEAR(ship.pose(-1.0).x, 0.0, 1e-12);  // before the oldest: the oldest
+}
+
 }  // namespace
 }  // namespace tow_sim

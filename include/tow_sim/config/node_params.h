@@ -30,6 +30,9 @@ struct NodeParams
   double force_arrow_scale = 0.01;            // [m/N] length of the tow-force arrow per newton
   double cable_marker_width = 0.5;            // [m] drawn width of the cable line
   double vehicle_diameter = 0.3;              // [m] drawn hull diameter
+  double ship_length = 60.0;                  // [m] drawn ship hull outline, about the odometry's reference point
+  double ship_beam = 12.0;                    // [m]
+  double trail_duration = 300.0;              // [s] drawn tracks of ship and vehicle (0: none)
   bool print_status = false;                  // print a status line each second (headless demo)
 };
 const ParamTable<NodeParams>& nodeParams();

@@ -4,14 +4,23 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include "tow_sim/core/tow_run.h"
+#include "tow_sim/core/track_trail.h"
 #include "tow_sim/ros/tow_sim_node.h"
 
 namespace tow_sim
 {
+struct MarkerTrails
+{
+  const TrackTrail* ship = nullptr;     // of the ship's reference point
+  const TrackTrail* vehicle = nullptr;  // of the vehicle's CG
+};
+
 // Cable line strip coloured by tension (ns "cable"), hull and four fins at their actual angles
 // ("vehicle", at the snapshot's published attitude), the tow force on the ship ("tow_force"), tension
-// labels ("labels") and the seabed around the vehicle ("seabed", when there is one).
+// labels ("labels"), the ship's hull outline and tow point ("ship"), the trails when given ("trails": 0
+// the ship, 1 the vehicle) and the seabed around the vehicle ("seabed", when there is one).
 visualization_msgs::MarkerArray makeMarkers(const TowSnapshot& s, const VehicleParams& vehicle, const Seabed* seabed,
-                                            const NodeParams& params, const std_msgs::Header& header);
+                                            const NodeParams& params, const std_msgs::Header& header,
+                                            const MarkerTrails& trails = MarkerTrails());
 
 }  // namespace tow_sim

@@ -27,6 +27,7 @@
 #include "tow_sim/core/ship_track.h"
 #include "tow_sim/core/tension_limits.h"
 #include "tow_sim/core/tow_run.h"
+#include "tow_sim/core/track_trail.h"
 
 namespace tow_sim
 {
@@ -82,6 +83,7 @@ private:
   // are published interpolated between the last two step ends (before_, after_).
   bool whole_steps_ = false;
   TrackReacquisition reacquisition_;  // after reacquire_after consistent jumps, the ship is started again
+  std::unique_ptr<TrackTrail> ship_trail_, vehicle_trail_;  // drawn (none when trail_duration is 0)
   TowSnapshot before_, after_;
   bool have_after_ = false;  // after_ is of the current run
   bool have_steps_ = false;  // and so is before_
