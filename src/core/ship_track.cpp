@@ -165,7 +165,8 @@ ShipPose ShipHistory::pose(double t) const
     return poses_.back();
   const size_t i = beyond ? times_.size() - 1 : static_cast<size_t>(upper - times_.begin());
   const double span = times_[i] - times_[i - 1];
-  const double w = beyond ? 1.0 + std::min(t - times_[i], track_.maxExtrapolation()) / span : (t - times_[i - 1]) / span;
+  const double w =
+      beyond ? 1.0 + std::min(t - times_[i], track_.maxExtrapolation()) / span : (t - times_[i - 1]) / span;
   const ShipPose &a = poses_[i - 1], &b = poses_[i];
   ShipPose out;
   out.x = (1.0 - w) * a.x + w * b.x;

@@ -141,7 +141,7 @@ TEST(ShipHistory, PoseWrapsThroughPiAndExtrapolatesLikeTheTrack)
   EXPECT_NEAR(ship.pose(0.5).x, 1.0, 1e-12);
   EXPECT_NEAR(ship.pose(1.5).x, 3.0, 1e-12);  // on at 2 m/s
   EXPECT_NEAR(std::remainder(ship.pose(1.5).heading - (-pi + 0.2), 2.0 * pi), 0.0, 1e-12);
-  EXPECT_NEAR(ship.pose(5.0).x, 4.0, 1e-12);  // held after max_extrapolation (1 s)
+  EXPECT_NEAR(ship.pose(5.0).x, 4.0, 1e-12);   // held after max_extrapolation (1 s)
   EXPECT_NEAR(ship.pose(-1.0).x, 0.0, 1e-12);  // before the oldest: the oldest
 }
 
