@@ -14,8 +14,8 @@ using Matrix36d = Eigen::Matrix<double, 3, 6>;
 
 // Cable segment e: d w / d(v_f, v_a) and d w / d(x_f, x_a) of its wrench at the CG (the centre), then
 // projected with [J_f J_a]^T.
-void segmentJacobian(const ChainModel& model, int e, const ElementKinematics& k, const ChainGeometry& geometry,
-                     const ChainData& data, ElementJacobian& out)
+void segmentJacobian(const ChainModel& model, int e, double t, const ElementKinematics& k,
+                     const ChainGeometry& geometry, const ChainData& data, ElementJacobian& out)
 {
   const Eigen::Matrix3d I3 = Eigen::Matrix3d::Identity();
   const CableSegmentModel seg = e == 0 ? model.firstSegment(geometry) : model.segment();
@@ -23,8 +23,10 @@ void segmentJacobian(const ChainModel& model, int e, const ElementKinematics& k,
   // The first segment's cable moves at the payout rate along it (ChainModel::elementDynamics): the same
   // derivatives, at the shifted velocity.
   const ElementKinematics kw = rate != 0.0 ? ElementKinematics::fromJoints(k.x_f, k.x_a, k.v_f + rate * k.s, k.v_a) : k;
-  const VelocityForceJacobian vf = velocityForceJacobian(kw, data.environment.currentAt(kw.pointAt(0.5).z()), seg.c1,
-                                                         seg.c2, seg.tangential_model, seg.smoothing_speed);
+  // The waves' velocity and acceleration vary along the wave (k a omega per metre): left out of J, which
+  // a W-method may approximate (their forcing is not stiff).
+  const VelocityForceJacobian vf = velocityForceJacobian(kw, data.environment.flowAt(kw.pointAt(0.5), t).velocity_W,
+                                                         seg.c1, seg.c2, seg.tangential_model, seg.smoothing_speed);
   // u = (v_f + v_a)/2 - current, dv = v_a - v_f.
   Matrix6d dw_dv;
   dw_dv << 0.5 * vf.force_u, 0.5 * vf.force_u, 0.5 * vf.moment_u - vf.moment_dv, 0.5 * vf.moment_u + vf.moment_dv;
@@ -111,7 +113,7 @@ void elementJacobian(const ChainModel& model, int e, double t, const ElementKine
                      const Vector6d* accelerations)
 {
   if (e < geometry.segments)
-    segmentJacobian(model, e, k, geometry, data, out);
+    segmentJacobian(model, e, t, k, geometry, data, out);
   else
     endBodyJacobian(model, e, t, k, geometry, data, accelerations, out);
   addGeometricStiffness(k, mu, out);

@@ -11,7 +11,7 @@ ChainModel::ChainModel(const CableParams& cable, std::shared_ptr<const EndBody> 
     : cable_(cable), end_body_(std::move(end_body)), env_(env), numerics_(numerics), seabed_(std::move(seabed))
 {
   validate(cable_);
-  validate(env_);
+  prepareWaves(env_);  // validates it
   validate(numerics_);
   if (!end_body_)
     throw std::invalid_argument("end_element: no end body given (element nu+1 is required)");
@@ -47,6 +47,7 @@ CableSegmentModel ChainModel::firstSegment(const ChainGeometry& geometry) const
   first.mass *= scale;
   first.net_weight *= scale;
   first.added_mass *= scale;
+  first.displaced_mass *= scale;
   return first;
 }
 
@@ -61,13 +62,14 @@ void ChainModel::elementDynamics(int e, double t, const ElementKinematics& k, co
     // the same.
     const CableSegmentModel first = firstSegment(geometry);
     if (geometry.first_rate != 0.0)
-      cableSegmentDynamics(first, ElementKinematics::fromJoints(k.x_f, k.x_a, k.v_f + geometry.first_rate * k.s, k.v_a),
+      cableSegmentDynamics(first, t,
+                           ElementKinematics::fromJoints(k.x_f, k.x_a, k.v_f + geometry.first_rate * k.s, k.v_a),
                            data.environment, out);
     else
-      cableSegmentDynamics(first, k, data.environment, out);
+      cableSegmentDynamics(first, t, k, data.environment, out);
   }
   else if (e < geometry.segments)
-    cableSegmentDynamics(segment_, k, data.environment, out);
+    cableSegmentDynamics(segment_, t, k, data.environment, out);
   else
     end_body_->dynamics(t, k, data.environment, data.actuators, out);
   if (with_contact && seabed())

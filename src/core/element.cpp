@@ -43,6 +43,7 @@ CableSegmentModel CableSegmentModel::fromParams(const CableParams& cable, const 
   m.c1 = wet * cable.c1Value(env);
   m.c2 = wet * cable.c2Value(env);
   m.added_mass = cable.added_mass_coefficient * env.water_density * area * m.length;
+  m.displaced_mass = env.water_density * area * m.length;
   m.tangential_model = cable.tangential_drag_model;
   m.smoothing_speed = numerics.tangential_smoothing_speed;
   return m;
@@ -135,7 +136,16 @@ Matrix6d jointMap(const Eigen::Vector3d& s, double length, double cg_fraction)
   return J;
 }
 
-void cableSegmentDynamics(const CableSegmentModel& seg, const ElementKinematics& k, const Environment& env,
+Vector6d waveInertiaWrench(const Eigen::Matrix3d& added_force, const Eigen::Matrix3d& added_moment,
+                           double displaced_mass, const Eigen::Vector3d& r_cb, const Eigen::Vector3d& a_w)
+{
+  const Eigen::Vector3d froude_krylov = displaced_mass * a_w;
+  Vector6d w;
+  w << added_force * a_w + froude_krylov, added_moment * a_w + r_cb.cross(froude_krylov);
+  return w;
+}
+
+void cableSegmentDynamics(const CableSegmentModel& seg, double t, const ElementKinematics& k, const Environment& env,
                           BodyDynamics& out)
 {
   const Eigen::Matrix3d I3 = Eigen::Matrix3d::Identity();
@@ -146,10 +156,15 @@ void cableSegmentDynamics(const CableSegmentModel& seg, const ElementKinematics&
   out.mass.topLeftCorner<3, 3>() = seg.mass * I3 + seg.added_mass * P;
   out.mass.bottomRightCorner<3, 3>() = (seg.mass * seg.length * seg.length / 12.0) * I3;
 
+  const WaveKinematics flow = env.flowAt(k.pointAt(0.5), t);
   const VelocityForces vf =
-      velocityForces(k, env.currentAt(k.pointAt(0.5).z()), seg.c1, seg.c2, seg.tangential_model, seg.smoothing_speed);
+      velocityForces(k, flow.velocity_W, seg.c1, seg.c2, seg.tangential_model, seg.smoothing_speed);
   out.wrench.head<3>() = vf.force - seg.net_weight * Eigen::Vector3d::UnitZ();
   out.wrench.tail<3>() = vf.moment;
+  // The waves' acceleration a_w (physics.md §9, Morison): Froude-Krylov rho A d a_w plus the added mass
+  // e a_w, both on the normal part, as the added mass acts on the segment's own normal acceleration.
+  if (env.wave_field)
+    out.wrench.head<3>() += (seg.displaced_mass + seg.added_mass) * (P * flow.acceleration_W);
 }
 
 RigidEndElement::RigidEndElement(const EndElementParams& params, const NumericsParams& numerics)
@@ -171,7 +186,7 @@ bool EndBody::command(Actuators&, double, double, double, double) const
   throw std::invalid_argument("command: this end body has no fins or propeller");
 }
 
-void RigidEndElement::dynamics(double /*t*/, const ElementKinematics& k, const Environment& env,
+void RigidEndElement::dynamics(double t, const ElementKinematics& k, const Environment& env,
                                const Actuators& /*actuators*/, BodyDynamics& out) const
 {
   const Eigen::Matrix3d I3 = Eigen::Matrix3d::Identity();
@@ -191,8 +206,9 @@ void RigidEndElement::dynamics(double /*t*/, const ElementKinematics& k, const E
 
   const double c1 = 0.5 * env.water_density * p_.tangential_drag_coefficient * kPi * p_.diameter;
   const double c2 = 0.5 * env.water_density * p_.normal_drag_coefficient * p_.diameter;
-  const VelocityForces vf =
-      velocityForces(k, env.currentAt(k.pointAt(0.5).z()), c1, c2, TangentialDragModel::kPode, smoothing_speed_);
+  // The body is small beside the waves' length: the flow at its midpoint for all its loads.
+  const WaveKinematics flow = env.flowAt(k.pointAt(0.5), t);
+  const VelocityForces vf = velocityForces(k, flow.velocity_W, c1, c2, TangentialDragModel::kPode, smoothing_speed_);
 
   const Eigen::Vector3d weight = -p_.mass * env.gravity * Eigen::Vector3d::UnitZ();
   const Eigen::Vector3d buoyancy = env.water_density * env.gravity * p_.displaced_volume * Eigen::Vector3d::UnitZ();
@@ -200,6 +216,9 @@ void RigidEndElement::dynamics(double /*t*/, const ElementKinematics& k, const E
 
   out.wrench.head<3>() = weight + buoyancy + vf.force;
   out.wrench.tail<3>() = r_cb.cross(buoyancy) + r_mid.cross(vf.force) + vf.moment;
+  if (env.wave_field)
+    out.wrench += waveInertiaWrench(out.mass.topLeftCorner<3, 3>() - p_.mass * I3, out.mass.bottomLeftCorner<3, 3>(),
+                                    env.water_density * p_.displaced_volume, r_cb, flow.acceleration_W);
 }
 
 }  // namespace tow_sim

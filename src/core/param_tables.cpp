@@ -41,6 +41,36 @@ const ParamTable<CableParams>& cableParams()
   return table;
 }
 
+const ParamTable<WaveParams>& waveParams()
+{
+  using W = WaveParams;
+  constexpr double kTwoPi = 4.0 * kHalfPi;
+  static const ParamTable<W> table =
+      ParamTable<W>()
+          .choice("type", &W::type,
+                  { { "none", W::Type::kNone }, { "regular", W::Type::kRegular }, { "jonswap", W::Type::kJonswap } },
+                  "none: calm water (the report's); regular: one Airy wave; jonswap: an irregular sea")
+          .number("water_depth", &W::water_depth, "m", 0.0, 12000.0, kClosed,
+                  "h of the wave kinematics and dispersion (cosh k(z+h)/sinh kh); 0: deep water (e^{kz})")
+          .number("direction", &W::direction, "rad", -kTwoPi, kTwoPi, kClosed,
+                  "the waves (jonswap: their mean) travel toward this, ENU, counter-clockwise from +x")
+          .number("height", &W::height, "m", 0.0, 30.0, kOpen, "regular: crest to trough H = 2a")
+          .number("period", &W::period, "s", 1.0, 60.0, kClosed, "regular: T")
+          .number("phase", &W::phase, "rad", -kTwoPi, kTwoPi, kClosed, "regular: φ in ζ = a cos(ωt − k·x + φ)")
+          .number("significant_height", &W::significant_height, "m", 0.0, 30.0, kOpen,
+                  "jonswap: Hs = 4√m₀ of the spectrum")
+          .number("peak_period", &W::peak_period, "s", 1.0, 60.0, kClosed, "jonswap: Tp")
+          .number("peak_enhancement", &W::peak_enhancement, "-", 1.0, 10.0, kClosed,
+                  "jonswap: γ (σ 0.07 below the peak, 0.09 above); 1 is Pierson–Moskowitz")
+          .number("spreading", &W::spreading, "-", 0.0, 100.0, kClosed,
+                  "jonswap: s of the cos^2s((θ − direction)/2) spreading, one direction per component; 0: long-crested")
+          .integer("components", &W::components, "-", 1, 2000,
+                   "jonswap: frequencies in equal bins over [0.5, 4] ω_p, each at a random point of its bin")
+          .integer("seed", &W::seed, "-", 0, 2147483647,
+                   "jonswap: the random phases, frequencies and directions (the same seed, the same sea)");
+  return table;
+}
+
 const ParamTable<Environment>& environmentParams()
 {
   using E = Environment;
@@ -54,7 +84,8 @@ const ParamTable<Environment>& environmentParams()
           .custom("current_profile", "m, m/s", "[]",
                   "depth [0, 12000] strictly increasing; velocity components [−20, 20]; ≤ 10000 samples",
                   "[{depth: 0, velocity: [vx, vy, vz]}, …]: added to current, linear in depth between samples, the "
-                  "end values above and below them; each element (the vehicle at its CG) sees it at its depth");
+                  "end values above and below them; each element (the vehicle at its CG) sees it at its depth")
+          .nest("waves", &E::waves, waveParams());
   return table;
 }
 

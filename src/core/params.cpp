@@ -86,6 +86,15 @@ void validate(const Environment& env, const std::string& p)
     for (int i = 0; i < 3; ++i)
       requireInRange(item + ".velocity[" + std::to_string(i) + "]", sample.velocity_W[i], -20.0, 20.0, "[m/s]");
   }
+  if (env.waves.type != WaveParams::Type::kNone)
+    requireInRange(p + ".gravity", env.gravity, 0.0, 100.0, "[m/s^2] (waves need gravity)", true);
+}
+
+void prepareWaves(Environment& env)
+{
+  validate(env);
+  env.wave_field =
+      env.waves.type == WaveParams::Type::kNone ? nullptr : std::make_shared<const WaveField>(env.waves, env.gravity);
 }
 
 void validate(const CableParams& c, const std::string& p)

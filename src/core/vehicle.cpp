@@ -147,8 +147,9 @@ Vehicle::Loads Vehicle::loads(double t, const ElementKinematics& k, const Enviro
   const Eigen::Vector3d& s = k.s;
   const Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
   Loads out;
-  // The vehicle is small beside the current's vertical scale: one current, at its CG, for all its loads.
-  const Eigen::Vector3d current = env.currentAt(k.pointAt(p_.cg_from_bail / tail).z());
+  // The vehicle is small beside the current's vertical scale and the waves' length: the flow at its CG
+  // (current plus waves) for all its loads.
+  const Eigen::Vector3d current = env.flowAt(k.pointAt(p_.cg_from_bail / tail), t).velocity_W;
   Eigen::Vector3d force = -p_.mass * env.gravity * up;
   const Eigen::Vector3d buoyancy = env.water_density * env.gravity * p_.displaced_volume * up;
   force += buoyancy;
@@ -193,7 +194,8 @@ void Vehicle::dynamics(double t, const ElementKinematics& k, const Environment& 
 {
   const double gamma = p_.cg_from_bail / p_.tail_from_bail;
   const Eigen::Vector3d v_cg = k.velocityAt(gamma);
-  const Eigen::Vector3d current = env.currentAt(k.pointAt(gamma).z());
+  const WaveKinematics flow = env.flowAt(k.pointAt(gamma), t);
+  const Eigen::Vector3d& current = flow.velocity_W;
   const BodyFrame frame = bodyFrame(k.s, headingHint(v_cg - current));
   const Eigen::Matrix3d R = frame.rotation();
   const Eigen::Matrix3d I3 = Eigen::Matrix3d::Identity();
@@ -208,6 +210,7 @@ void Vehicle::dynamics(double t, const ElementKinematics& k, const Environment& 
   // d(I w)/dt = I dw/dt + w x I w with w = s x ds/dt (no roll).
   out.wrench.tail<3>() -= k.omega.cross(inertia_W * k.omega);
 
+  const Matrix6d rigid = out.mass;
   if (p_.added_mass_approach == AddedMassApproach::kA)
   {
     // -e P (a_mid), a_mid = a_G + dw/dt x r, r from the CG to the bail-tail midpoint.
@@ -233,6 +236,13 @@ void Vehicle::dynamics(double t, const ElementKinematics& k, const Environment& 
       out.wrench.tail<3>() += R * munk.tail<3>();
     }
   }
+  if (env.wave_field)
+  {
+    const Matrix6d added = out.mass - rigid;
+    out.wrench += waveInertiaWrench(added.topLeftCorner<3, 3>(), added.bottomLeftCorner<3, 3>(),
+                                    env.water_density * p_.displaced_volume, (p_.cb_from_bail - p_.cg_from_bail) * k.s,
+                                    flow.acceleration_W);
+  }
 }
 
 VehicleOutputs Vehicle::outputs(double t, const ElementKinematics& k, const Environment& env,
@@ -242,7 +252,7 @@ VehicleOutputs Vehicle::outputs(double t, const ElementKinematics& k, const Envi
   VehicleOutputs o;
   o.p_cg_W = k.pointAt(gamma);
   o.v_cg_W = k.velocityAt(gamma);
-  const BodyFrame frame = bodyFrame(k.s, headingHint(o.v_cg_W - env.currentAt(o.p_cg_W.z())));
+  const BodyFrame frame = bodyFrame(k.s, headingHint(o.v_cg_W - env.flowAt(o.p_cg_W, t).velocity_W));
   const Eigen::Matrix3d R = frame.rotation();
   o.q_WB = Eigen::Quaterniond(R).normalized();
   o.v_cg_B = R.transpose() * o.v_cg_W;

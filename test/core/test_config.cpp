@@ -70,6 +70,14 @@ void expectSame(const SimulationConfig& a, const SimulationConfig& b)
   EXPECT_EQ(a.seabed.vehicle_damping, b.seabed.vehicle_damping);
   EXPECT_EQ(a.seabed.friction, b.seabed.friction);
   EXPECT_EQ(a.seabed.friction_speed, b.seabed.friction_speed);
+  const WaveParams &wa = a.environment.waves, &wb = b.environment.waves;
+  EXPECT_EQ(wa.type, wb.type);
+  for (auto member : { &WaveParams::water_depth, &WaveParams::direction, &WaveParams::height, &WaveParams::period,
+                       &WaveParams::phase, &WaveParams::significant_height, &WaveParams::peak_period,
+                       &WaveParams::peak_enhancement, &WaveParams::spreading })
+    EXPECT_EQ(wa.*member, wb.*member);
+  EXPECT_EQ(wa.components, wb.components);
+  EXPECT_EQ(wa.seed, wb.seed);
   ASSERT_EQ(a.environment.current_profile.size(), b.environment.current_profile.size());
   for (std::size_t i = 0; i < a.environment.current_profile.size(); ++i)
   {
@@ -127,6 +135,8 @@ cable: {length: 320, segments: 40, c2: 14.5, tangential_drag_model: quadratic}
 environment:
   current: [0.3, -0.2, 0.0]
   current_profile: [{depth: 0, velocity: [0, 0, 0]}, {depth: 150, velocity: [0, 0.6, 0]}]
+  waves: {type: jonswap, water_depth: 80, direction: 2.5, significant_height: 3.5, peak_period: 9, spreading: 6,
+          components: 64, seed: 11}
 numerics: {stepper: rk4, fixed_step: 0.02}
 winch: {enabled: true, min_length: 100, max_length: 900, max_rate: 1.5}
 seabed: {type: flat, depth: 400, friction: 0.3}
@@ -138,6 +148,8 @@ vehicle:
   EXPECT_EQ(c.cable.segments, 40);
   EXPECT_EQ(*c.cable.c2, 14.5);
   EXPECT_EQ(c.numerics.stepper, StepperType::kRk4);
+  EXPECT_EQ(c.environment.waves.type, WaveParams::Type::kJonswap);
+  EXPECT_EQ(c.environment.waves.components, 64);
   EXPECT_EQ(c.vehicle.inertia_B(2, 0), 1.5);
   EXPECT_TRUE(c.vehicle.prolate_spheroid.has_value());
   EXPECT_NEAR(c.vehicle.rudder.lift(0.25), 0.25, 1e-12);

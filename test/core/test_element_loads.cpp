@@ -241,7 +241,7 @@ TEST(CableSegment, MassMatrixAndWrench)
   const NumericsParams numerics;
   const CableSegmentModel seg = CableSegmentModel::fromParams(testCable(), env, numerics);
   BodyDynamics out;
-  cableSegmentDynamics(seg, kStateA.kinematics(), env, out);
+  cableSegmentDynamics(seg, 0.0, kStateA.kinematics(), env, out);
 
   const double area = kPi * 0.025 * 0.025 / 4.0;
   const double m = 4.2, e = 0.9 * 1025.0 * area * 3.0, d = 3.0;
@@ -261,7 +261,7 @@ TEST(CableSegment, MassMatrixAndWrench)
   // The segment's tangential model is the cable's.
   CableParams quadratic = testCable();
   quadratic.tangential_drag_model = TangentialDragModel::kQuadratic;
-  cableSegmentDynamics(CableSegmentModel::fromParams(quadratic, env, numerics), kStateA.kinematics(), env, out);
+  cableSegmentDynamics(CableSegmentModel::fromParams(quadratic, env, numerics), 0.0, kStateA.kinematics(), env, out);
   const HandLoads hand_q = handVelocityForces(kStateA, kCurrentA, c1, c2, false, 0.0);
   EXPECT_TRUE(near(out.wrench.head<3>(), hand_q.force - net_weight * Vector3d::UnitZ()));
 }

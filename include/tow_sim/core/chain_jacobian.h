@@ -27,7 +27,8 @@ struct ElementJacobian
 //     -T/d (I - s s^T) on the relative displacement of its joints (compression is left out: it would
 //     soften N).
 // Left out (a W-method keeps its order with any matrix; only the step it can take changes): on cable
-// segments the drag's and the weight's dependence on the direction and the current profile's on depth;
+// segments the drag's and the weight's dependence on the direction, the current profile's on depth and the
+// waves' dependence on position (and their acceleration's load);
 // on cable segments the inertia's dependence on the direction; on every element the length constraint's
 // dependence on the direction and its velocity term.
 // When `accelerations` (a_f, a_a at the state) is given, the end body's derivatives include its inertia

@@ -42,12 +42,13 @@ struct BodyDynamics
 // Constant description of a uniform cable segment (physics.md §4).
 struct CableSegmentModel
 {
-  double length = 0.0;      // [m] d_lambda
-  double mass = 0.0;        // [kg] m_lambda = w d / g (mass in air)
-  double net_weight = 0.0;  // [N] (w - b) d, weight in water
-  double c1 = 0.0;          // [N s^2/m^3] tangential drag constant
-  double c2 = 0.0;          // [N s^2/m^3] normal drag constant
-  double added_mass = 0.0;  // [kg] e_lambda, Walton-Polachek, acts on the normal acceleration
+  double length = 0.0;          // [m] d_lambda
+  double mass = 0.0;            // [kg] m_lambda = w d / g (mass in air)
+  double net_weight = 0.0;      // [N] (w - b) d, weight in water
+  double c1 = 0.0;              // [N s^2/m^3] tangential drag constant
+  double c2 = 0.0;              // [N s^2/m^3] normal drag constant
+  double added_mass = 0.0;      // [kg] e_lambda, Walton-Polachek, acts on the normal acceleration
+  double displaced_mass = 0.0;  // [kg] rho (pi D^2/4) d: the Froude-Krylov force of the waves' acceleration
   TangentialDragModel tangential_model = TangentialDragModel::kPode;
   double smoothing_speed = 0.01;  // [m/s] width of the smooth sign of u.s (Pode model)
 
@@ -81,7 +82,14 @@ VelocityForceJacobian velocityForceJacobian(const ElementKinematics& k, const Ei
 // [J_f J_a] (6 x 6); its transpose projects a wrench at the CG onto the two joints (S5).
 Matrix6d jointMap(const Eigen::Vector3d& s, double length, double cg_fraction);
 
-void cableSegmentDynamics(const CableSegmentModel& seg, const ElementKinematics& k, const Environment& env,
+// The load of the waves' acceleration a_w [m/s^2] on a closed body (physics.md §9), as a wrench at its CG:
+// the added mass acting on [a_w; 0] (the force and moment rows' translational blocks of its added-mass
+// matrix about the CG) plus the Froude-Krylov force rho V a_w at its centre of buoyancy r_cb from the CG.
+Vector6d waveInertiaWrench(const Eigen::Matrix3d& added_force, const Eigen::Matrix3d& added_moment,
+                           double displaced_mass, const Eigen::Vector3d& r_cb, const Eigen::Vector3d& a_w);
+
+// Cable segment at time t [s] (the waves move in time).
+void cableSegmentDynamics(const CableSegmentModel& seg, double t, const ElementKinematics& k, const Environment& env,
                           BodyDynamics& out);
 
 // What an operator sets on the end body while it runs (the vehicle's fins and propeller); part of the

@@ -13,6 +13,7 @@
 namespace tow_sim
 {
 const ParamTable<CableParams>& cableParams();
+const ParamTable<WaveParams>& waveParams();
 const ParamTable<Environment>& environmentParams();
 const ParamTable<NumericsParams>& numericsParams();
 const ParamTable<WinchParams>& winchParams();

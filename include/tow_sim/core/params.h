@@ -4,11 +4,13 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "tow_sim/core/param_table.h"
+#include "tow_sim/core/waves.h"
 
 namespace tow_sim
 {
@@ -35,12 +37,23 @@ struct Environment
   // the end values beyond them, nothing when empty. At most 10000 samples.
   std::vector<CurrentSample> current_profile;
 
+  WaveParams waves;  // calm water by default
+  // The sea of `waves`, built by prepareWaves() (ChainModel does); none: calm water.
+  std::shared_ptr<const WaveField> wave_field;
+
   // [m/s] the current at height z_W [m] (world, z up; depth = -z).
   Eigen::Vector3d currentAt(double z_W) const
   {
     if (current_profile.empty())
       return current_W;
     return current_W + profileAt(-z_W);
+  }
+  // The water's velocity (current plus waves) and acceleration (the waves') at p_W [m], time t [s].
+  WaveKinematics flowAt(const Eigen::Vector3d& p_W, double t) const
+  {
+    WaveKinematics flow = wave_field ? wave_field->kinematics(p_W, t) : WaveKinematics();
+    flow.velocity_W += currentAt(p_W.z());
+    return flow;
   }
 
 private:
@@ -136,6 +149,8 @@ struct WinchParams
 
 // Each throws std::invalid_argument("<prefix>.<name> = <value> is out of range: must be ...").
 void validate(const Environment& env, const std::string& prefix = "environment");
+// Builds env.wave_field from env.waves and env.gravity (none for calm water); validates them first.
+void prepareWaves(Environment& env);
 void validate(const CableParams& cable, const std::string& prefix = "cable");
 void validate(const EndElementParams& end, const std::string& prefix = "end_element");
 void validate(const NumericsParams& numerics, const std::string& prefix = "numerics");
