@@ -30,18 +30,25 @@ void readCurrentProfile(Section& s, Environment& e)
   }
 }
 
+}  // namespace
+
+std::string resolvePath(const std::string& file, const std::string& base_dir)
+{
+  const std::string path = file[0] == '/' ? file : base_dir + file;
+  std::error_code no_cwd;
+  const std::filesystem::path absolute = std::filesystem::absolute(path, no_cwd);
+  return no_cwd ? path : absolute.lexically_normal().string();
+}
+
+namespace
+{
 void readGrid(Section& s, SeabedParams& b, const std::string& base_dir)
 {
   if (b.type != SeabedParams::Type::kGrid)
     return;
   if (b.grid_file.empty())
     fail(s.path("grid_file"), "must name a bathymetry file for type 'grid'");
-  // Resolved to an absolute path, so a configuration written back (the batch runner's scenario.yaml, in
-  // another folder) reads the same grid from anywhere.
-  const std::string path = b.grid_file[0] == '/' ? b.grid_file : base_dir + b.grid_file;
-  std::error_code no_cwd;
-  const std::filesystem::path absolute = std::filesystem::absolute(path, no_cwd);
-  b.grid_file = no_cwd ? path : absolute.lexically_normal().string();
+  b.grid_file = resolvePath(b.grid_file, base_dir);
   try
   {
     b.grid = loadBathymetryFile(b.grid_file);

@@ -99,6 +99,13 @@ void setCurrent(ChainData& data, const Eigen::Vector3d& current_W)
   data.environment = candidate;
 }
 
+void setWaveTime(ChainData& data, double wave_time)
+{
+  if (!std::isfinite(wave_time))
+    throw std::invalid_argument("wave time origin = " + std::to_string(wave_time) + " must be finite [s]");
+  data.environment.wave_time = wave_time;
+}
+
 void setCurrentProfile(ChainData& data, const std::vector<CurrentSample>& profile)
 {
   Environment candidate = data.environment;

@@ -174,6 +174,9 @@ ShipPose ShipHistory::pose(double t) const
   // The shorter way round (headings wrap at +-pi in odometry).
   out.heading = a.heading + w * std::remainder(b.heading - a.heading, 2.0 * kPi);
   out.speed = b.speed;
+  out.z = (1.0 - w) * a.z + w * b.z;
+  out.roll = a.roll + w * std::remainder(b.roll - a.roll, 2.0 * kPi);
+  out.pitch = (1.0 - w) * a.pitch + w * b.pitch;
   return out;
 }
 

@@ -4,11 +4,15 @@
 // preset: straight, turn (after ~turn_start, radius ~turn_radius, to port if ~turn_radius > 0), zigzag
 // (+-~speed/~turn_radius * ~zigzag_period/4 about the course, from ~turn_start), speed_change (to ~speed_2 at
 // ~change_time over ~change_duration), waypoints (~waypoints, each within ~waypoint_radius).
+// In waves (~environment/waves, the towing configuration's section loaded here too) the ship heaves, rolls and
+// pitches by its RAOs (~rao_file, or the generic vessel's; ~wave_response false keeps it level), the sea
+// running on ROS time like tow_sim_node's.
 #include <geometry_msgs/TransformStamped.h>
 #include <geometry_msgs/Twist.h>
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
 #include <tf2_ros/transform_broadcaster.h>
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
@@ -18,6 +22,9 @@
 #include <utility>
 #include <vector>
 
+#include "tow_sim/config/config.h"
+#include "tow_sim/core/ship_response.h"
+#include "tow_sim/ros/conversions.h"
 #include "tow_sim/scenario/scripted_ship.h"
 
 namespace
@@ -137,12 +144,39 @@ public:
     if (!(rate_ >= 1.0 && rate_ <= 1000.0))
       throw std::invalid_argument(pnh.resolveName("rate") + " must be in [1, 1000] [Hz]");
     ship_ = std::make_unique<tow_sim::ScriptedShip>(manoeuvres(presets_), 0.0, 0.0, heading);
+    readWaves(pnh);
     odom_pub_ = nh.advertise<nav_msgs::Odometry>("ship/odom", 20);
     cmd_sub_ = nh.subscribe("cmd_vel", 5, &ShipMotionNode::onCmdVel, this);
     timer_ = nh.createTimer(ros::Duration(1.0 / rate_), &ShipMotionNode::tick, this);
   }
 
 private:
+  void readWaves(const ros::NodeHandle& pnh)
+  {
+    bool respond = true;
+    std::string rao_file;
+    readTyped(pnh, "wave_response", respond, "true or false");
+    readTyped(pnh, "rao_file", rao_file, "a string (a CSV file)");
+    const tow_sim::SimulationConfig config =
+        tow_sim::loadConfig(tow_sim::ros_conv::privateParameters(pnh), pnh.getNamespace() + "/");
+    const tow_sim::Environment& env = config.environment;
+    if (!respond || env.waves.type == tow_sim::WaveParams::Type::kNone)
+      return;
+    waves_ = std::make_unique<tow_sim::WaveField>(env.waves, env.gravity);
+    try
+    {
+      rao_ = std::make_unique<tow_sim::RaoTable>(rao_file.empty() ? tow_sim::RaoTable::genericVessel(env.gravity)
+                                                                  : tow_sim::RaoTable::fromCsvFile(rao_file));
+    }
+    catch (const std::invalid_argument& e)
+    {
+      throw std::invalid_argument(pnh.resolveName("rao_file") + ": " + e.what());
+    }
+    ROS_INFO("ship_motion: heaving, rolling and pitching in %s waves (%s)",
+             env.waves.type == tow_sim::WaveParams::Type::kRegular ? "regular" : "JONSWAP",
+             rao_file.empty() ? "the generic vessel's RAOs" : rao_file.c_str());
+  }
+
   void onCmdVel(const geometry_msgs::Twist::ConstPtr& msg)
   {
     if (!std::isfinite(msg->linear.x) || !std::isfinite(msg->angular.z))
@@ -170,24 +204,37 @@ private:
 
   void publish(const ros::Time& now)
   {
-    const double heading = ship_->heading();
+    const tow_sim::ShipRigidMotion m =
+        tow_sim::scriptedShipMotion(now.toSec(), ship_->x(), ship_->y(), ship_->heading(), ship_->speed(),
+                                    ship_->yawRate(), waves_.get(), rao_.get());
+    const Eigen::Matrix3d R = tow_sim::shipRotation(m.roll, m.pitch, m.yaw);
+    const Eigen::Quaterniond q(R);
+    const Eigen::Vector3d v_S = R.transpose() * m.v_W, w_S = R.transpose() * tow_sim::shipAngularVelocity(m);
     nav_msgs::Odometry odom;
     odom.header.stamp = now;
     odom.header.frame_id = world_frame_;
     odom.child_frame_id = ship_frame_;
-    odom.pose.pose.position.x = ship_->x();
-    odom.pose.pose.position.y = ship_->y();
-    odom.pose.pose.orientation.z = std::sin(0.5 * heading);
-    odom.pose.pose.orientation.w = std::cos(0.5 * heading);
-    odom.twist.twist.linear.x = ship_->speed();  // REP-105: twist in the ship frame
-    odom.twist.twist.angular.z = ship_->yawRate();
+    odom.pose.pose.position.x = m.p_W.x();
+    odom.pose.pose.position.y = m.p_W.y();
+    odom.pose.pose.position.z = m.p_W.z();
+    odom.pose.pose.orientation.x = q.x();
+    odom.pose.pose.orientation.y = q.y();
+    odom.pose.pose.orientation.z = q.z();
+    odom.pose.pose.orientation.w = q.w();
+    odom.twist.twist.linear.x = v_S.x();  // REP-105: twist in the ship frame
+    odom.twist.twist.linear.y = v_S.y();
+    odom.twist.twist.linear.z = v_S.z();
+    odom.twist.twist.angular.x = w_S.x();
+    odom.twist.twist.angular.y = w_S.y();
+    odom.twist.twist.angular.z = w_S.z();
     odom_pub_.publish(odom);
 
     geometry_msgs::TransformStamped tf;
     tf.header = odom.header;
     tf.child_frame_id = ship_frame_;
-    tf.transform.translation.x = ship_->x();
-    tf.transform.translation.y = ship_->y();
+    tf.transform.translation.x = m.p_W.x();
+    tf.transform.translation.y = m.p_W.y();
+    tf.transform.translation.z = m.p_W.z();
     tf.transform.rotation = odom.pose.pose.orientation;
     broadcaster_.sendTransform(tf);
   }
@@ -196,6 +243,8 @@ private:
   double rate_ = 20.0;
   std::string world_frame_, ship_frame_;
   std::unique_ptr<tow_sim::ScriptedShip> ship_;
+  std::unique_ptr<tow_sim::WaveField> waves_;  // none: a level ship
+  std::unique_ptr<tow_sim::RaoTable> rao_;
   tow_sim::ScriptedShip::Teleop teleop_;
   ros::Time last_, last_cmd_;
   ros::Publisher odom_pub_;

@@ -159,6 +159,9 @@ void TowSimNode::start(double t)
   const std::string warning = run_.start(t);
   if (!warning.empty())
     ROS_WARN_THROTTLE(5.0, "tow_sim: %s", warning.c_str());
+  // The sea runs on ROS time (ship_motion_node's ship heaves in the same waves): run time t is ROS time
+  // time_origin + t.
+  run_.setWaveTime(static_cast<double>(time_origin_ns_) * 1e-9);
   started_ = true;
   have_last_ = false;  // the status line waits for this run's first output
   if (ship_trail_)
@@ -207,7 +210,12 @@ void TowSimNode::onOdometry(const nav_msgs::Odometry::ConstPtr& msg)
   ship_pose.heading = x_axis.head<2>().norm() > 1e-6 ? std::atan2(x_axis.y(), x_axis.x())
                       : ship_->empty()               ? 0.0
                                                      : ship_->pose(ship_->newestTime()).heading;
-  ship_pose.speed = in.v_S.norm();
+  const Eigen::Vector3d v_W = r.q_WS * in.v_S;
+  ship_pose.speed = v_W.head<2>().norm();               // over ground (a heaving ship's vertical speed left out)
+  const Eigen::Matrix3d R = r.q_WS.toRotationMatrix();  // REP-103 roll and pitch: R = Rz Ry Rx
+  ship_pose.z = in.p_W.z();
+  ship_pose.pitch = -std::asin(std::clamp(R(2, 0), -1.0, 1.0));
+  ship_pose.roll = std::atan2(R(2, 1), R(2, 2));
   ship_->add(in.t, r.tow_p_W, r.tow_v_W, ship_pose);
   last_odom_wall_ = ros::WallTime::now().toSec();
   if (!started_)

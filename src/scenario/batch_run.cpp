@@ -26,11 +26,11 @@ std::string timeseriesRow(const TowSnapshot& s)
   std::ostringstream row;
   row.precision(10);
   const VehicleOutputs& o = s.vehicle;
-  row << s.t << ',' << s.ship.x << ',' << s.ship.y << ",0," << s.ship.speed << ',' << o.p_cg_W.x() << ','
-      << o.p_cg_W.y() << ',' << o.p_cg_W.z() << ",0," << s.pitch << ',' << s.yaw << ',' << s.depth << ',' << s.layback
-      << ',' << s.diversion.offset << ',' << s.diversion.rate << ',' << s.tension_ship << ',' << s.tension_vehicle
-      << ',' << o.rudder << ',' << o.elevator << ',' << o.thrust << ',' << s.max_length_error << ',' << s.cable_length
-      << ',' << s.payout_rate << ',';
+  row << s.t << ',' << s.ship.x << ',' << s.ship.y << ',' << s.ship.z << ',' << s.ship.speed << ',' << o.p_cg_W.x()
+      << ',' << o.p_cg_W.y() << ',' << o.p_cg_W.z() << ",0," << s.pitch << ',' << s.yaw << ',' << s.depth << ','
+      << s.layback << ',' << s.diversion.offset << ',' << s.diversion.rate << ',' << s.tension_ship << ','
+      << s.tension_vehicle << ',' << o.rudder << ',' << o.elevator << ',' << o.thrust << ',' << s.max_length_error
+      << ',' << s.cable_length << ',' << s.payout_rate << ',';
   if (s.seabed_present)
     row << s.vehicle_altitude;  // blank without a seabed
   row << ',' << s.contacts << ',';

@@ -29,7 +29,15 @@ const ParamTable<Scenario>& shipParams()
           .number("start_heading", &S::start_heading, "rad", -100.0, 100.0, kClosed,
                   "ENU, counter-clockwise from +x (east)")
           .custom("manoeuvres", "", "[straight at 2 m/s for 60 s]", "a list (keys below)",
-                  "one after the other; the speed carries over when omitted; straight on after the last");
+                  "one after the other; the speed carries over when omitted; straight on after the last")
+          .boolean("wave_response", &S::wave_response,
+                   "in environment.waves the scripted ship heaves, rolls and pitches by its RAOs (the tow point "
+                   "with it)")
+          .text("rao_file", &S::rao_file, "a readable CSV file, or empty",
+                "the ship's RAOs (see The ship in waves); empty: the generic 60 m vessel; relative to the scenario")
+          .text("motion_file", &S::motion_file, "a readable CSV file, or empty",
+                "measured motion t, x, y, z, roll, pitch, yaw [s, m, rad] replayed instead of manoeuvres; relative "
+                "to the scenario");
   return table;
 }
 
@@ -114,10 +122,42 @@ const ParamTable<Scenario>& simulationParams()
 
 namespace
 {
-void readShip(ParamReader r, Scenario& sc)
+void readShipFiles(Section& ship, Scenario& sc, const std::string& base_dir)
+{
+  try
+  {
+    if (!sc.rao_file.empty())
+    {
+      sc.rao_file = resolvePath(sc.rao_file, base_dir);
+      sc.rao = std::make_shared<const RaoTable>(RaoTable::fromCsvFile(sc.rao_file));
+    }
+    else
+      sc.rao = std::make_shared<const RaoTable>(RaoTable::genericVessel(sc.config.environment.gravity));
+  }
+  catch (const std::invalid_argument& e)
+  {
+    fail(ship.path("rao_file"), e.what());
+  }
+  if (sc.motion_file.empty())
+    return;
+  if (ship.has("manoeuvres"))
+    fail(ship.path("motion_file"), "replaces the manoeuvres: give one or the other");
+  try
+  {
+    sc.motion_file = resolvePath(sc.motion_file, base_dir);
+    sc.motion = loadShipMotionFile(sc.motion_file);
+  }
+  catch (const std::invalid_argument& e)
+  {
+    fail(ship.path("motion_file"), e.what());
+  }
+}
+
+void readShip(ParamReader r, Scenario& sc, const std::string& base_dir)
 {
   r.read(shipParams(), sc);
   Section& ship = r.at("");
+  readShipFiles(ship, sc, base_dir);
   const std::vector<double> start = ship.list("start_position");
   if (!start.empty() && start.size() != 2)
     fail(ship.path("start_position"), "must be [x, y] [m]");
@@ -240,7 +280,7 @@ Scenario loadScenarioUnguarded(const YAML::Node& root, const std::string& base_d
   Section top(root, "scenario");
   for (const char* section : { "cable", "vehicle", "environment", "numerics", "winch", "seabed" })
     top.has(section);
-  readShip(ParamReader(top.child("ship")), sc);
+  readShip(ParamReader(top.child("ship")), sc, base_dir);
   readCommands(top, sc);
   readAutopilot(top, sc);
   readInitialState(top, sc);
@@ -249,6 +289,10 @@ Scenario loadScenarioUnguarded(const YAML::Node& root, const std::string& base_d
   simulation.finish();
   validateParams(simulationParams(), sc, simulation.at("").name());
   top.finish();
+  if (!sc.motion.empty() && (sc.motion.front().t > 0.0 || sc.motion.back().t < sc.duration))
+    fail("ship.motion_file", "covers t = " + std::to_string(sc.motion.front().t) + " .. " +
+                                 std::to_string(sc.motion.back().t) +
+                                 " s; the run needs 0 .. simulation.duration = " + std::to_string(sc.duration) + " s");
   return sc;
 }
 }  // namespace
@@ -294,6 +338,8 @@ void writeShip(YAML::Node ship, const Scenario& sc)
 {
   detail::writeParams(ship, shipParams(), sc);
   ship["start_position"] = std::vector<double>{ sc.start_position.x(), sc.start_position.y() };
+  if (!sc.motion_file.empty())
+    return;  // the motion file replaces the manoeuvres
   for (const Manoeuvre& m : sc.manoeuvres)
   {
     YAML::Node n;

@@ -74,6 +74,13 @@ const std::string& outputRoot()
   return root;
 }
 
+// Every scenario in scenarios/ (the bathymetry files there are grids, not scenarios).
+const char* const kShippedScenarios[] = { "report_elevator_step", "turn_180",
+                                          "speed_change",         "zigzag",
+                                          "winch_payout",         "seabed_shoal",
+                                          "sheared_current",      "autopilot_depth_turn",
+                                          "autopilot_terrain",    "head_seas" };
+
 // Runs a shipped scenario once per test process (whichever test asks first), in this process through the
 // batch library (runScenario, what tow_sim_batch calls), writing its CSV files into the output folder for
 // the checks and the plot command; status 0, or 3 with the error when the run stopped.
@@ -147,8 +154,7 @@ TEST(Batch, EveryScenarioRunsAndWritesTheDocumentedColumns)
                                              "vehicle_altitude",
                                              "seabed_contacts",
                                              "depth_setpoint" };
-  for (const std::string name : { "report_elevator_step", "turn_180", "speed_change", "zigzag", "winch_payout",
-                                  "seabed_shoal", "sheared_current", "autopilot_depth_turn", "autopilot_terrain" })
+  for (const std::string name : kShippedScenarios)
   {
     ASSERT_FALSE(outputRoot().empty()) << "cannot make a temporary folder";
     const std::string scenario = std::string(TOW_SIM_SOURCE_DIR) + "/scenarios/" + name + ".yaml";
@@ -202,6 +208,7 @@ TEST(Batch, EveryScenarioRunsAndWritesTheDocumentedColumns)
       EXPECT_GT(fileSize(out + "/" + png), 5000) << name << " " << png;
     EXPECT_EQ(fileSize(out + "/winch.png") > 5000, sc.config.winch.enabled) << name;
     EXPECT_EQ(fileSize(out + "/seabed.png") > 5000, sc.config.seabed.type != SeabedParams::Type::kNone) << name;
+    EXPECT_EQ(fileSize(out + "/waves.png") > 5000, sc.config.environment.waves.type != WaveParams::Type::kNone) << name;
   }
 }
 
@@ -305,8 +312,7 @@ double largestScaledDifference(const std::vector<std::vector<std::string>>& actu
 TEST(Batch, ShippedScenariosReproduceTheGoldenOutputs)
 {
   ASSERT_FALSE(outputRoot().empty()) << "cannot make a temporary folder";
-  for (const std::string name : { "report_elevator_step", "turn_180", "speed_change", "zigzag", "winch_payout",
-                                  "seabed_shoal", "sheared_current", "autopilot_depth_turn", "autopilot_terrain" })
+  for (const std::string name : kShippedScenarios)
     for (const char* file : { "timeseries.csv", "shapes.csv" })
     {
       const ScenarioRun& r = shippedRun(name);

@@ -8,13 +8,17 @@
 #include <cmath>
 #include <complex>
 #include <cstdio>
+#include <cstdlib>
 #include <functional>
+#include <sstream>
 #include <vector>
 
 #include "core/chain_fixtures.h"
 #include "tow_sim/config/config.h"
 #include "tow_sim/core/vehicle.h"
 #include "tow_sim/core/waves.h"
+#include "tow_sim/scenario/batch_run.h"
+#include "tow_sim/scenario/scenario.h"
 
 namespace tow_sim
 {
@@ -385,6 +389,58 @@ TEST(Waves, ANeutrallyBuoyantDragFreeChainMovingWithTheWaterIsAcceleratedWithIt)
   EXPECT_LT(rigid, 0.02);
   EXPECT_LT(approach_a, 0.02);
   EXPECT_LT(approach_b, 0.02);
+}
+
+// A tow in an irregular head sea with the ship heaving and pitching (the generic vessel): no divergence,
+// the segment lengths held (the largest error a step leaves before projection small), the tension at the
+// ship positive and swinging about its calm-water value, the vehicle's depth bounded. 600 s here;
+// TOW_SIM_SEAWAY_SECONDS=3600 (make soak) runs the hour.
+TEST(Waves, AnIrregularSeaTowStaysBounded)
+{
+  const char* env = std::getenv("TOW_SIM_SEAWAY_SECONDS");
+  const double seconds = env ? std::atof(env) : 600.0;
+  const Scenario sc = loadScenario(YAML::Load(R"(
+cable: {length: 300.0, segments: 30}
+environment:
+  waves: {type: jonswap, significant_height: 5.0, peak_period: 9.0, direction: 2.8, spreading: 4, seed: 3}
+ship: {manoeuvres: [{type: straight, speed: 2.0, duration: 1.0e5}]}
+simulation: {duration: )" + std::to_string(seconds) +
+                                              R"(, output_interval: 1.0, shape_interval: 1.0e5}
+)"));
+  std::ostringstream series, shapes;
+  BatchResult result;
+  ASSERT_NO_THROW(runScenario(sc, series, shapes, result));
+  EXPECT_EQ(result.t_reached, seconds);
+  std::istringstream in(series.str());
+  std::string line;
+  std::getline(in, line);  // header
+  double t_lo = 1e9, t_hi = 0.0, depth_lo = 1e9, depth_hi = 0.0, worst_length = 0.0, sum = 0.0;
+  int rows = 0;
+  while (std::getline(in, line))
+  {
+    std::vector<double> c;
+    std::stringstream cells(line);
+    std::string cell;
+    while (std::getline(cells, cell, ','))
+      c.push_back(cell.empty() ? 0.0 : std::stod(cell));
+    if (c[0] < 60.0)  // the waves switch on at t = 0
+      continue;
+    t_lo = std::min(t_lo, c[15]);
+    t_hi = std::max(t_hi, c[15]);
+    depth_lo = std::min(depth_lo, c[11]);
+    depth_hi = std::max(depth_hi, c[11]);
+    worst_length = std::max(worst_length, c[20]);
+    sum += c[15];
+    ++rows;
+  }
+  std::printf(
+      "%.0f s in Hs 5 m: tension at the ship %.0f .. %.0f N (mean %.0f), depth %.1f .. %.1f m, largest "
+      "length error before projection %.1e\n",
+      seconds, t_lo, t_hi, sum / rows, depth_lo, depth_hi, worst_length);
+  EXPECT_GT(t_lo, 0.0);
+  EXPECT_GT(t_hi - t_lo, 200.0);  // the sea loads the cable
+  EXPECT_LT(depth_hi - depth_lo, 10.0);
+  EXPECT_LT(worst_length, 1e-3);
 }
 
 }  // namespace

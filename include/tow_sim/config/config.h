@@ -20,6 +20,9 @@ SimulationConfig loadConfigFile(const std::string& path);  // grid files relativ
 
 // The directory part of a path ("" for a bare file name), with a trailing slash.
 std::string directoryOf(const std::string& path);
+// A file named in a configuration, relative to `base_dir` unless absolute, made absolute (so that a
+// configuration written back, e.g. the batch runner's scenario.yaml in another folder, names the same file).
+std::string resolvePath(const std::string& file, const std::string& base_dir);
 
 // Writes a configuration back as YAML (every key, defaults filled in).
 YAML::Node toYaml(const SimulationConfig& config);

@@ -126,5 +126,7 @@ private:
 // Validates a change of the currents before it enters ChainData (std::invalid_argument naming the field).
 void setCurrent(ChainData& data, const Eigen::Vector3d& current_W);
 void setCurrentProfile(ChainData& data, const std::vector<CurrentSample>& profile);
+// The sea's clock at t = 0 [s] (Environment::wave_time); finite, else std::invalid_argument.
+void setWaveTime(ChainData& data, double wave_time);
 
 }  // namespace tow_sim

@@ -40,6 +40,9 @@ struct Environment
   WaveParams waves;  // calm water by default
   // The sea of `waves`, built by prepareWaves() (ChainModel does); none: calm water.
   std::shared_ptr<const WaveField> wave_field;
+  // [s] the sea's clock at the run's t = 0: the waves at run time t are the field's at t + wave_time (the
+  // node sets its time origin's ROS time, so that ship_motion_node's ship heaves in the same sea).
+  double wave_time = 0.0;
 
   // [m/s] the current at height z_W [m] (world, z up; depth = -z).
   Eigen::Vector3d currentAt(double z_W) const
@@ -51,7 +54,7 @@ struct Environment
   // The water's velocity (current plus waves) and acceleration (the waves') at p_W [m], time t [s].
   WaveKinematics flowAt(const Eigen::Vector3d& p_W, double t) const
   {
-    WaveKinematics flow = wave_field ? wave_field->kinematics(p_W, t) : WaveKinematics();
+    WaveKinematics flow = wave_field ? wave_field->kinematics(p_W, t + wave_time) : WaveKinematics();
     flow.velocity_W += currentAt(p_W.z());
     return flow;
   }

@@ -49,13 +49,15 @@ private:
   std::deque<Sample> samples_;
 };
 
-// The ship's own pose in the horizontal plane and its speed at one time (its reference point, not the
-// tow point).
+// The ship's own pose and its speed at one time (its reference point, not the tow point).
 struct ShipPose
 {
   double x = 0.0, y = 0.0;  // [m] world
   double heading = 0.0;     // [rad] ENU, counter-clockwise from +x
   double speed = 0.0;       // [m/s] over ground
+  double z = 0.0;           // [m] heave (world z of the reference point)
+  double roll = 0.0;        // [rad] REP-103, about x (positive: port side up)
+  double pitch = 0.0;       // [rad] about y (positive: bow down)
 };
 
 // What a tow run knows of the ship: the tow point's motion (a ShipTrack) and the ship's pose, from

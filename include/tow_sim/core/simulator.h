@@ -119,6 +119,7 @@ public:
   void resetActuators(double t);                                            // fins centred, no thrust, from time t [s]
   void setCurrent(const Eigen::Vector3d& current_W);
   void setCurrentProfile(const std::vector<CurrentSample>& profile);
+  void setWaveTime(double wave_time) { tow_sim::setWaveTime(data_, wave_time); }
 
   // Winch: the commanded payout rate [m/s] (positive pays out), saturated at +-max_rate (returned).
   // Throws std::invalid_argument if it is not finite or the winch is disabled. The rate follows the

@@ -107,6 +107,8 @@ public:
   double setWinchCommand(double payout_rate) { return sim_.setWinchCommand(payout_rate); }
   void setCurrent(const Eigen::Vector3d& current_W) { sim_.setCurrent(current_W); }
   void setCurrentProfile(const std::vector<CurrentSample>& profile) { sim_.setCurrentProfile(profile); }
+  // The sea's clock at t = 0 [s] (Environment::wave_time).
+  void setWaveTime(double wave_time) { sim_.setWaveTime(wave_time); }
 
   // Integrates to t (finite, >= time(); else std::invalid_argument), applying the scheduled commands, setpoints and
   // autopilot ticks due on the way in time order. Throws std::runtime_error on divergence (the last good state stays).

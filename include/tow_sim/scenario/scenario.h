@@ -6,11 +6,13 @@
 #include <yaml-cpp/yaml.h>
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "tow_sim/config/config.h"
 #include "tow_sim/core/depth_autopilot.h"
+#include "tow_sim/core/ship_response.h"
 #include "tow_sim/core/tow_run.h"
 
 namespace tow_sim
@@ -37,6 +39,19 @@ struct Manoeuvre
   std::vector<Eigen::Vector2d> points;
 };
 
+// One row of a measured ship motion file (ship.motion_file): the ship's reference point and attitude,
+// world ENU, REP-103.
+struct ShipMotionSample
+{
+  double t = 0.0;                             // [s]
+  double x = 0.0, y = 0.0, z = 0.0;           // [m]
+  double roll = 0.0, pitch = 0.0, yaw = 0.0;  // [rad]
+};
+
+// Reads a CSV with the columns t, x, y, z, roll, pitch, yaw (a header line first; # comments): at least two
+// rows, times strictly increasing, every value finite. Throws std::invalid_argument naming the file and line.
+std::vector<ShipMotionSample> loadShipMotionFile(const std::string& path);
+
 struct Scenario
 {
   SimulationConfig config;
@@ -44,7 +59,13 @@ struct Scenario
   Eigen::Vector2d start_position = Eigen::Vector2d::Zero();        // [m] ship, world
   double start_heading = 0.0;                                      // [rad] ENU, from +x counter-clockwise
   std::vector<Manoeuvre> manoeuvres;                               // one after the other
-  std::vector<CommandEvent> commands;                              // sorted by time
+  // In waves the scripted ship heaves, rolls and pitches by its RAOs (rao_file, or the generic vessel's).
+  bool wave_response = true;
+  std::string rao_file;                  // CSV (RaoTable::fromCsvFile), absolute once loaded; "": the generic vessel
+  std::shared_ptr<const RaoTable> rao;   // loaded from rao_file
+  std::string motion_file;               // measured ship motion replayed instead of manoeuvres ("": none)
+  std::vector<ShipMotionSample> motion;  // loaded from motion_file
+  std::vector<CommandEvent> commands;    // sorted by time
   AutopilotLoop autopilot;  // the depth autopilot in the loop: gains, rate, setpoints; drives the fins when enabled
   InitialShape initial;     // equilibrium (default), line (direction in the ship frame) or points (world)
   double duration = 600.0;  // [s]
