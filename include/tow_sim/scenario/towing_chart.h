@@ -1,0 +1,47 @@
+// Towing charts (tow_sim_chart): the steady tow of a configuration over a grid of ship speeds and lengths
+// of cable out, each point the steady-tow equilibrium a tow run starts from (TowRun, the batch runner's
+// start). (Library tow_sim_scenario.)
+#pragma once
+
+#include <Eigen/Core>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "tow_sim/config/config.h"
+
+namespace tow_sim
+{
+// One point of a chart. Where no equilibrium was found the values are NaN and `error` says why.
+struct ChartPoint
+{
+  double speed = 0.0;            // [m/s] ship, through the ground, along +x
+  double cable_out = 0.0;        // [m]
+  double current = 0.0;          // [m/s] magnitude of the uniform current
+  bool converged = false;        // an equilibrium was found
+  double depth = 0.0;            // [m] vehicle CG below the surface
+  double layback = 0.0;          // [m] vehicle CG behind the tow point
+  double tension_ship = 0.0;     // [N] |T_1|
+  double tension_vehicle = 0.0;  // [N] |T_{nu+1}|
+  double ship_angle = 0.0;       // [deg] the first segment below the horizontal
+  double max_tension = 0.0;      // [N] the largest |T| along the cable
+  std::string error;
+};
+
+// The steady tow of `config` with cable_out [m] of cable (segments of the configuration's length, at least
+// one), the ship at speed [m/s] along +x and the uniform current current_W [m/s] (world), the tow point
+// at the surface.
+ChartPoint chartPoint(const SimulationConfig& config, double speed, double cable_out, const Eigen::Vector3d& current_W);
+
+// Every point of speeds x cable_outs (speed varying fastest).
+std::vector<ChartPoint> towingChart(const SimulationConfig& config, const std::vector<double>& speeds,
+                                    const std::vector<double>& cable_outs, const Eigen::Vector3d& current_W);
+
+// FROM:TO:STEP [the unit's] as a list (TO included within STEP/1000); throws std::invalid_argument naming
+// `option` for a malformed range, STEP <= 0, FROM > TO or more than 10000 values.
+std::vector<double> parseRange(const std::string& text, const std::string& option);
+
+const char* chartHeader();
+void writeChartRow(std::ostream& out, const ChartPoint& p);
+
+}  // namespace tow_sim

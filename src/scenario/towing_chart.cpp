@@ -1,0 +1,130 @@
+#include "tow_sim/scenario/towing_chart.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+
+#include "tow_sim/core/tow_run.h"
+
+namespace tow_sim
+{
+namespace
+{
+constexpr double kPi = 3.14159265358979323846;
+}
+
+ChartPoint chartPoint(const SimulationConfig& config, double speed, double cable_out, const Eigen::Vector3d& current_W)
+{
+  ChartPoint p;
+  p.speed = speed;
+  p.cable_out = cable_out;
+  p.current = current_W.norm();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  p.depth = p.layback = p.tension_ship = p.tension_vehicle = p.ship_angle = p.max_tension = nan;
+  try
+  {
+    SimulationConfig c = config;
+    c.cable.segments = std::max(1, static_cast<int>(std::lround(cable_out / config.cable.segmentLength())));
+    c.cable.length = cable_out;
+    c.environment.current_W = current_W;
+    c.winch.enabled = false;                    // the chart's lengths are the cable out, whatever the winch's limits
+    c.seabed.type = SeabedParams::Type::kNone;  // the steady tow ignores the bottom
+    auto ship = std::make_shared<ShipHistory>(1.0, 8);
+    for (int k = -2; k <= 2; ++k)
+      ship->add(k, Eigen::Vector3d(speed * k, 0.0, 0.0), Eigen::Vector3d(speed, 0.0, 0.0),
+                ShipPose{ speed * k, 0.0, 0.0, speed });
+    TowRun run(c, ship, InitialShape());
+    const std::string warning = run.start(0.0);
+    if (!warning.empty())
+    {
+      p.error = warning;
+      return p;
+    }
+    const TowSnapshot s = run.snapshot();
+    p.converged = true;
+    p.depth = s.depth;
+    p.layback = s.layback;
+    p.tension_ship = s.tension_ship;
+    p.tension_vehicle = s.tension_vehicle;
+    const Eigen::Vector3d first = s.joints.col(1) - s.joints.col(0);
+    p.ship_angle = std::atan2(-first.z(), first.head<2>().norm()) * 180.0 / kPi;
+    p.max_tension = s.tensions.colwise().norm().maxCoeff();
+  }
+  catch (const std::exception& e)
+  {
+    p.converged = false;
+    p.error = e.what();
+  }
+  return p;
+}
+
+std::vector<ChartPoint> towingChart(const SimulationConfig& config, const std::vector<double>& speeds,
+                                    const std::vector<double>& cable_outs, const Eigen::Vector3d& current_W)
+{
+  std::vector<ChartPoint> points;
+  for (double cable_out : cable_outs)
+    for (double speed : speeds)
+      points.push_back(chartPoint(config, speed, cable_out, current_W));
+  return points;
+}
+
+std::vector<double> parseRange(const std::string& text, const std::string& option)
+{
+  std::vector<double> parts;
+  std::stringstream ss(text);
+  std::string part;
+  while (std::getline(ss, part, ':'))
+  {
+    size_t used = 0;
+    double v = NAN;
+    try
+    {
+      v = std::stod(part, &used);
+    }
+    catch (const std::exception&)
+    {
+      used = 0;
+    }
+    if (used == 0 || used != part.size() || !std::isfinite(v))
+      throw std::invalid_argument(option + " '" + text + "': '" + part + "' is not a number (FROM:TO:STEP)");
+    parts.push_back(v);
+  }
+  if (parts.size() == 1)
+    return parts;
+  if (parts.size() != 3)
+    throw std::invalid_argument(option + " '" + text + "' must be FROM:TO:STEP (or one value)");
+  const double from = parts[0], to = parts[1], step = parts[2];
+  if (!(step > 0.0) || from > to || (to - from) / step > 10000.0)
+    throw std::invalid_argument(option + " '" + text + "': needs STEP > 0, FROM <= TO and at most 10000 values");
+  std::vector<double> out;
+  for (int i = 0; from + i * step <= to + 1e-3 * step; ++i)
+    out.push_back(from + i * step);
+  return out;
+}
+
+const char* chartHeader()
+{
+  return "speed,cable_out,current,depth,layback,tension_ship,tension_vehicle,ship_angle,max_tension,converged";
+}
+
+void writeChartRow(std::ostream& out, const ChartPoint& p)
+{
+  auto value = [&](double v)
+  {
+    if (std::isfinite(v))
+      out << v;
+  };
+  out.precision(10);
+  out << p.speed << ',' << p.cable_out << ',' << p.current << ',';
+  for (double v : { p.depth, p.layback, p.tension_ship, p.tension_vehicle, p.ship_angle, p.max_tension })
+  {
+    value(v);
+    out << ',';
+  }
+  out << (p.converged ? 1 : 0) << '\n';
+}
+
+}  // namespace tow_sim
