@@ -25,7 +25,7 @@ void segmentJacobian(const ChainModel& model, int e, double t, const ElementKine
   const ElementKinematics kw = rate != 0.0 ? ElementKinematics::fromJoints(k.x_f, k.x_a, k.v_f + rate * k.s, k.v_a) : k;
   // The waves' velocity and acceleration vary along the wave (k a omega per metre): left out of J, which
   // a W-method may approximate (their forcing is not stiff).
-  const VelocityForceJacobian vf = velocityForceJacobian(kw, data.environment.flowAt(kw.pointAt(0.5), t).velocity_W,
+  const VelocityForceJacobian vf = velocityForceJacobian(kw, data.environment.flowOver(kw.x_f, kw.x_a, t).velocity_W,
                                                          seg.c1, seg.c2, seg.tangential_model, seg.smoothing_speed);
   // u = (v_f + v_a)/2 - current, dv = v_a - v_f.
   Matrix6d dw_dv;

@@ -156,7 +156,7 @@ void cableSegmentDynamics(const CableSegmentModel& seg, double t, const ElementK
   out.mass.topLeftCorner<3, 3>() = seg.mass * I3 + seg.added_mass * P;
   out.mass.bottomRightCorner<3, 3>() = (seg.mass * seg.length * seg.length / 12.0) * I3;
 
-  const WaveKinematics flow = env.flowAt(k.pointAt(0.5), t);
+  const WaveKinematics flow = env.flowOver(k.x_f, k.x_a, t);
   const VelocityForces vf =
       velocityForces(k, flow.velocity_W, seg.c1, seg.c2, seg.tangential_model, seg.smoothing_speed);
   out.wrench.head<3>() = vf.force - seg.net_weight * Eigen::Vector3d::UnitZ();

@@ -90,6 +90,33 @@ void validate(const Environment& env, const std::string& p)
     requireInRange(p + ".gravity", env.gravity, 0.0, 100.0, "[m/s^2] (waves need gravity)", true);
 }
 
+WaveKinematics Environment::flowOver(const Eigen::Vector3d& p_f, const Eigen::Vector3d& p_a, double t) const
+{
+  const Eigen::Vector3d centre = p_f + 0.5 * (p_a - p_f);  // as ElementKinematics::pointAt(0.5)
+  WaveKinematics flow;
+  if (wave_field)
+  {
+    // The wet part [lo, hi] of p_f + eta (p_a - p_f), eta in [0, 1], where z <= 0.
+    double lo = 0.0, hi = 1.0;
+    const double zf = p_f.z(), za = p_a.z();
+    if (zf > 0.0 && za > 0.0)
+      hi = lo = 0.0;
+    else if (zf > 0.0 || za > 0.0)
+      (zf > 0.0 ? lo : hi) = zf / (zf - za);
+    if (hi > lo)
+    {
+      const double wet = hi - lo;
+      Eigen::Vector3d p = p_f + 0.5 * (lo + hi) * (p_a - p_f);
+      p.z() = std::min(p.z(), -1e-12);  // within the wet part (rounding)
+      flow = wave_field->kinematics(p, t + wave_time);
+      flow.velocity_W *= wet;
+      flow.acceleration_W *= wet;
+    }
+  }
+  flow.velocity_W += currentAt(centre.z());
+  return flow;
+}
+
 void prepareWaves(Environment& env)
 {
   validate(env);

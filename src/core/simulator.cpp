@@ -461,6 +461,8 @@ void Simulator::stepOnce(double t_end, double winch_step, StepReport& report)
     steppers_ = std::make_unique<Steppers>(num);  // new state size: odeint sizes its buffers once
   project(t_);
   refreshOutputs();
+  report.tension_ship.add(tensions_.col(0).norm());
+  report.tension_vehicle.add(tensions_.col(tensions_.cols() - 1).norm());
 }
 
 ElementKinematics Simulator::elementKinematics(int e) const

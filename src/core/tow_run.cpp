@@ -126,6 +126,7 @@ std::string TowRun::start(double t)
     sim_.setWinchCommand(due->payout_rate);
   attitude_.reset();
   max_length_error_ = 0.0;
+  tension_ship_range_ = tension_vehicle_range_ = ValueRange();
   started_ = true;
   return warning;
 }
@@ -171,6 +172,8 @@ StepReport TowRun::advanceTo(double t)
     total.rejected += r.rejected;
     total.max_length_error = std::max(total.max_length_error, r.max_length_error);
     max_length_error_ = std::max(max_length_error_, r.max_length_error);
+    tension_ship_range_.add(r.tension_ship);
+    tension_vehicle_range_.add(r.tension_vehicle);
   };
   for (;;)
   {
@@ -232,6 +235,11 @@ TowSnapshot TowRun::snapshot()
   s.payout_rate = sim_.payoutRate();
   s.max_length_error = max_length_error_;
   max_length_error_ = 0.0;
+  tension_ship_range_.add(s.tension_ship);
+  tension_vehicle_range_.add(s.tension_vehicle);
+  s.tension_ship_range = tension_ship_range_;
+  s.tension_vehicle_range = tension_vehicle_range_;
+  tension_ship_range_ = tension_vehicle_range_ = ValueRange();
 
   const VehicleOutputs& o = s.vehicle = vehicleOutputs();
   s.attitude = attitude_.update(o.q_WB * Eigen::Vector3d::UnitX());

@@ -13,7 +13,8 @@ const char* timeseriesHeader()
 {
   return "t,ship_x,ship_y,ship_z,ship_speed,vehicle_x,vehicle_y,vehicle_z,vehicle_roll,vehicle_pitch,vehicle_yaw,depth,"
          "layback,diversion,diversion_rate,tension_ship,tension_vehicle,rudder,elevator,thrust,max_length_error,"
-         "cable_length,payout_rate,vehicle_altitude,seabed_contacts,depth_setpoint";
+         "cable_length,payout_rate,vehicle_altitude,seabed_contacts,depth_setpoint,tension_ship_min,tension_ship_max,"
+         "tension_vehicle_min,tension_vehicle_max";
 }
 
 const char* shapesHeader()
@@ -36,6 +37,8 @@ std::string timeseriesRow(const TowSnapshot& s)
   row << ',' << s.contacts << ',';
   if (s.depth_setpoint)
     row << *s.depth_setpoint;  // blank without an autopilot
+  row << ',' << s.tension_ship_range.min << ',' << s.tension_ship_range.max << ',' << s.tension_vehicle_range.min << ','
+      << s.tension_vehicle_range.max;
   return row.str();
 }
 

@@ -153,7 +153,11 @@ TEST(Batch, EveryScenarioRunsAndWritesTheDocumentedColumns)
                                              "payout_rate",
                                              "vehicle_altitude",
                                              "seabed_contacts",
-                                             "depth_setpoint" };
+                                             "depth_setpoint",
+                                             "tension_ship_min",
+                                             "tension_ship_max",
+                                             "tension_vehicle_min",
+                                             "tension_vehicle_max" };
   for (const std::string name : kShippedScenarios)
   {
     ASSERT_FALSE(outputRoot().empty()) << "cannot make a temporary folder";
@@ -178,6 +182,13 @@ TEST(Batch, EveryScenarioRunsAndWritesTheDocumentedColumns)
         if (cell.empty() && columns[c] == "depth_setpoint" && !sc.autopilot.enabled)
           continue;  // and without an autopilot
         ASSERT_TRUE(std::isfinite(std::stod(cell))) << name << " row " << r << " column " << columns[c];
+      }
+      // The interval's extremes bracket the tension at the output time.
+      for (const auto& [value, lo, hi] : { std::tuple<int, int, int>{ 15, 26, 27 }, { 16, 28, 29 } })
+      {
+        const double v = std::stod(rows[r][static_cast<size_t>(value)]);
+        ASSERT_LE(std::stod(rows[r][static_cast<size_t>(lo)]), v) << name << " row " << r;
+        ASSERT_GE(std::stod(rows[r][static_cast<size_t>(hi)]), v) << name << " row " << r;
       }
     }
     // Tension is positive, the vehicle is under water, the lengths held: a step leaves a relative length

@@ -290,6 +290,38 @@ TEST(Waves, BadParametersAreRefusedNamingTheKeyAndTheRange)
   EXPECT_EQ(error("environment: {waves: {type: jonswap, significant_height: 6, spreading: 3}}"), "(accepted)");
 }
 
+// A segment crossing the mean surface sees the waves of its wet part's centre times the wet fraction: by
+// hand from Airy for a segment half under water; none when above; continuous as it rises through z = 0.
+TEST(Waves, TheSplashZoneFadesTheWavesInAndOutContinuously)
+{
+  Environment env;
+  env.current_W = Eigen::Vector3d(0.3, 0.0, 0.0);
+  env.waves = regular(2.0, 7.0, 0.5, 0.2);
+  prepareWaves(env);
+  const double omega = 2.0 * kPi / 7.0;
+  const Airy airy{ 1.0, omega, omega * omega / kG, 0.5, 0.2, 0.0 };
+  const double t = 3.3;
+  // From (0, 0, -2) to (4, 0, 2): wet from eta = 0 to 0.5, its centre at (1, 0, -1).
+  const WaveKinematics half = env.flowOver(Eigen::Vector3d(0, 0, -2), Eigen::Vector3d(4, 0, 2), t);
+  const Eigen::Vector3d centre(1.0, 0.0, -1.0);
+  EXPECT_LT((half.velocity_W - (0.5 * airy.velocity(centre, t) + env.current_W)).norm(), 1e-12);
+  EXPECT_LT((half.acceleration_W - 0.5 * airy.acceleration(centre, t)).norm(), 1e-12);
+  const WaveKinematics dry = env.flowOver(Eigen::Vector3d(0, 0, 0.5), Eigen::Vector3d(4, 0, 2), t);
+  EXPECT_EQ(dry.velocity_W, env.current_W);
+  EXPECT_EQ(dry.acceleration_W, Eigen::Vector3d::Zero());
+  const WaveKinematics wet = env.flowOver(Eigen::Vector3d(0, 0, -3), Eigen::Vector3d(4, 0, -1), t);
+  EXPECT_LT((wet.velocity_W - (airy.velocity(Eigen::Vector3d(2, 0, -2), t) + env.current_W)).norm(), 1e-12);
+  double jump = 0.0;
+  for (double z = -3.0; z <= 1.0; z += 0.01)
+  {
+    const Eigen::Vector3d a(0, 0, z), b(4, 0, z + 2.0), up(0, 0, 1e-6);
+    const WaveKinematics lo = env.flowOver(a, b, t), hi = env.flowOver(a + up, b + up, t);
+    jump = std::max(jump, (hi.acceleration_W - lo.acceleration_W).norm() / 1e-6);
+  }
+  std::printf("largest d(acceleration)/dz of a segment rising through the surface: %.3f 1/s^2\n", jump);
+  EXPECT_LT(jump, 1.0);  // a switch would be ~ a omega^2 / 1e-6 = 8e5
+}
+
 // A cable segment held still in a regular wave: the drag of the water's velocity and the inertia of its
 // acceleration, normal to the axis (Morison), the net weight, and no moment for a uniform segment.
 TEST(Waves, AHeldSegmentFeelsMorisonsForce)
@@ -441,6 +473,62 @@ simulation: {duration: )" + std::to_string(seconds) +
   EXPECT_GT(t_hi - t_lo, 200.0);  // the sea loads the cable
   EXPECT_LT(depth_hi - depth_lo, 10.0);
   EXPECT_LT(worst_length, 1e-3);
+}
+
+// The batch's per-interval tension extremes (over the accepted steps' ends) catch what a sample per output
+// interval misses. In a regular 9 s wave with steps of at most 0.05 s (numerics.max_step), against the same
+// run written every 0.05 s, each 2 s interval's extremes agree with the fine samples' within 1 % of the
+// tension's swing, and they are wider than the change between the 2 s samples.
+TEST(Waves, TheBatchsTensionExtremesCatchPeaksBetweenOutputs)
+{
+  auto run = [](double interval)
+  {
+    const Scenario sc = loadScenario(YAML::Load(R"(
+cable: {length: 200.0, segments: 20}
+environment: {waves: {type: regular, height: 3.0, period: 9.0, direction: 3.1}}
+numerics: {max_step: 0.05}
+ship: {manoeuvres: [{type: straight, speed: 2.0, duration: 1.0e5}]}
+simulation: {duration: 120, output_interval: )" +
+                                                std::to_string(interval) + R"(, shape_interval: 1.0e5}
+)"));
+    std::ostringstream series, shapes;
+    BatchResult result;
+    runScenario(sc, series, shapes, result);
+    std::vector<std::vector<double>> rows;
+    std::istringstream in(series.str());
+    std::string line;
+    std::getline(in, line);
+    while (std::getline(in, line))
+    {
+      std::vector<double> c;
+      std::stringstream cells(line);
+      std::string cell;
+      while (std::getline(cells, cell, ','))
+        c.push_back(cell.empty() ? 0.0 : std::stod(cell));
+      rows.push_back(c);
+    }
+    return rows;
+  };
+  const auto coarse = run(2.0), fine = run(0.05);
+  double worst = 0.0, swing = 0.0, wider = 0.0;
+  for (size_t i = 10; i < coarse.size(); ++i)
+  {
+    const double t = coarse[i][0];
+    double lo = 1e9, hi = -1e9;
+    for (const auto& r : fine)
+      if (r[0] > t - 2.0 + 1e-9 && r[0] < t + 1e-9)
+      {
+        lo = std::min(lo, r[15]);
+        hi = std::max(hi, r[15]);
+      }
+    worst = std::max({ worst, std::abs(coarse[i][26] - lo), std::abs(coarse[i][27] - hi) });
+    swing = std::max(swing, hi - lo);
+    wider += (coarse[i][27] - coarse[i][26]) - std::abs(coarse[i][15] - coarse[i - 1][15]);
+  }
+  std::printf("tension extremes per 2 s vs 0.05 s samples: largest difference %.1f N (largest swing in 2 s %.0f N)\n",
+              worst, swing);
+  EXPECT_LT(worst, 0.01 * swing);
+  EXPECT_GT(wider, 0.0);
 }
 
 }  // namespace

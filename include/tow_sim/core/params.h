@@ -58,6 +58,10 @@ struct Environment
     flow.velocity_W += currentAt(p_W.z());
     return flow;
   }
+  // The flow a segment from p_f to p_a [m] sees at time t [s]: the current at its centre; the waves at the
+  // centre of its part below the mean surface z = 0, times that part's fraction of its length, so that
+  // the waves fade in and out continuously as a segment crosses the surface (the splash zone).
+  WaveKinematics flowOver(const Eigen::Vector3d& p_f, const Eigen::Vector3d& p_a, double t) const;
 
 private:
   Eigen::Vector3d profileAt(double depth) const;

@@ -4,8 +4,10 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cstddef>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -74,11 +76,31 @@ Diversion lateralDiversion(const Eigen::Vector3d& p_W, const Eigen::Vector3d& v_
 // rigid links carry compression; a real cable would go slack there).
 std::vector<bool> slackFlags(const Eigen::Matrix3Xd& joints, const Eigen::Matrix3Xd& tensions);
 
+// The smallest and largest of a series of values (empty: min > max).
+struct ValueRange
+{
+  double min = std::numeric_limits<double>::infinity();
+  double max = -std::numeric_limits<double>::infinity();
+  void add(double v)
+  {
+    min = std::min(min, v);
+    max = std::max(max, v);
+  }
+  void add(const ValueRange& r)
+  {
+    min = std::min(min, r.min);
+    max = std::max(max, r.max);
+  }
+  bool empty() const { return min > max; }
+};
+
 struct StepReport
 {
   int steps = 0;                  // accepted steps
   int rejected = 0;               // steps the error control rejected
   double max_length_error = 0.0;  // [-] largest relative length error left by a step, before projection
+  ValueRange tension_ship;        // [N] |T_1| at the end of each accepted step
+  ValueRange tension_vehicle;     // [N] |T_{nu+1}| likewise
 };
 
 class Simulator

@@ -57,6 +57,9 @@ struct TowSnapshot
   std::vector<bool> slack;    // per T_lambda: the rigid link carries compression
   double tension_ship = 0.0, tension_vehicle = 0.0;  // [N] |T_1|, |T_{nu+1}|
   double cable_length = 0.0, payout_rate = 0.0;      // [m], [m/s]
+  // [N] the smallest and largest tension at the ship and at the vehicle over the steps since the previous
+  // snapshot and at this one (a peak shorter than an output interval shows here)
+  ValueRange tension_ship_range, tension_vehicle_range;
   double max_length_error = 0.0;  // [-] largest relative length error a step left before projection, since
                                   // the previous snapshot
   VehicleOutputs vehicle;         // at the CG, in the dynamics' zero-roll frame; fin angles and loads
@@ -145,6 +148,7 @@ private:
   size_t next_setpoint_ = 0;
   long ticks_ = 0;
   double max_length_error_ = 0.0;
+  ValueRange tension_ship_range_, tension_vehicle_range_;  // since the last snapshot
   AttitudeHold attitude_;
 };
 
