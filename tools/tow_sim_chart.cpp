@@ -2,9 +2,12 @@
 // of cable out, without roscore.
 //   tow_sim_chart --config FILE.yaml --speeds FROM:TO:STEP --cable-out FROM:TO:STEP
 //                 [--current SPEED:DIRECTION_DEG] --out DIR [--no-plot]
-// Writes DIR/chart.csv (README, Towing charts) and, with python3-matplotlib, its PNG charts (tow_sim_plot).
-// Exit codes: 0 done (points without an equilibrium are marked in the CSV, not an error); 2 bad arguments
-// or configuration; 4 cannot write DIR.
+//   tow_sim_chart --config FILE.yaml --target-depth D --speed U [--current ...]    the cable out for depth D
+//   tow_sim_chart --config FILE.yaml --cable-out L --depth-band MIN:MAX [--current ...]   the speed window
+// Writes DIR/chart.csv (README, Towing charts) and, with python3-matplotlib, its PNG charts (tow_sim_plot);
+// the planning forms print their answer. Exit codes: 0 done (chart points without an equilibrium are
+// marked in the CSV, not an error); 2 bad arguments or configuration; 3 the depth or band is out of reach;
+// 4 cannot write DIR.
 #include <sys/stat.h>
 
 #include <cmath>
@@ -30,14 +33,16 @@ int usage(const std::string& why)
 {
   std::fprintf(stderr,
                "tow_sim_chart: %s\nusage: tow_sim_chart --config FILE.yaml --speeds FROM:TO:STEP --cable-out "
-               "FROM:TO:STEP [--current SPEED:DIRECTION_DEG] --out DIR [--no-plot]\n",
+               "FROM:TO:STEP [--current SPEED:DIRECTION_DEG] --out DIR [--no-plot]\n"
+               "       tow_sim_chart --config FILE.yaml --target-depth D --speed U [--current SPEED:DIRECTION_DEG]\n"
+               "       tow_sim_chart --config FILE.yaml --cable-out L --depth-band MIN:MAX [--current ...]\n",
                why.c_str());
   return 2;
 }
 
 struct Options
 {
-  std::string config_path, speeds, cable_out, current, out_dir;
+  std::string config_path, speeds, cable_out, current, out_dir, target_depth, speed, depth_band;
   bool plot = true;
 };
 
@@ -57,13 +62,25 @@ std::string parseArguments(int argc, char** argv, Options& o)
       o.current = argv[++i];
     else if (!std::strcmp(argv[i], "--out") && has_value)
       o.out_dir = argv[++i];
+    else if (!std::strcmp(argv[i], "--target-depth") && has_value)
+      o.target_depth = argv[++i];
+    else if (!std::strcmp(argv[i], "--speed") && has_value)
+      o.speed = argv[++i];
+    else if (!std::strcmp(argv[i], "--depth-band") && has_value)
+      o.depth_band = argv[++i];
     else if (!std::strcmp(argv[i], "--no-plot"))
       o.plot = false;
     else
       return std::string("unknown argument '") + argv[i] + "'";
   }
-  if (o.config_path.empty() || o.speeds.empty() || o.cable_out.empty() || o.out_dir.empty())
-    return "--config, --speeds, --cable-out and --out are needed";
+  if (o.config_path.empty())
+    return "--config is needed";
+  if (!o.target_depth.empty())
+    return o.speed.empty() ? "--target-depth needs --speed" : "";
+  if (!o.depth_band.empty())
+    return o.cable_out.empty() ? "--depth-band needs --cable-out (one length)" : "";
+  if (o.speeds.empty() || o.cable_out.empty() || o.out_dir.empty())
+    return "a chart needs --speeds, --cable-out and --out";
   return "";
 }
 
@@ -96,6 +113,54 @@ void plotChart(const std::string& out_dir)
   if (std::system(command.c_str()) != 0)
     std::fprintf(stderr, "tow_sim_chart: the charts were not drawn (is python3-matplotlib installed?)\n");
 }
+double single(const std::string& text, const std::string& option)
+{
+  const std::vector<double> v = parseRange(text, option);
+  if (v.size() != 1)
+    throw std::invalid_argument(option + " '" + text + "' must be one number");
+  return v[0];
+}
+
+// --target-depth D --speed U: the cable out, within the winch's limits.
+int planDepth(const SimulationConfig& config, const Options& o, const Eigen::Vector3d& current)
+{
+  const double depth = single(o.target_depth, "--target-depth"), speed = single(o.speed, "--speed");
+  const CableOutPlan plan =
+      planCableOut(config, depth, speed, current, config.winch.min_length, config.winch.max_length);
+  if (!plan.reachable)
+  {
+    std::printf("tow_sim_chart: unreachable: %s\n", plan.reason.c_str());
+    return 3;
+  }
+  const ChartPoint& p = plan.point;
+  std::printf(
+      "tow_sim_chart: %.2f m out puts the vehicle at %.2f m at %g m/s: layback %.1f m, tension at the ship "
+      "%.0f N, at the vehicle %.0f N, largest %.0f N\n",
+      plan.cable_out, p.depth, speed, p.layback, p.tension_ship, p.tension_vehicle, p.max_tension);
+  return 0;
+}
+
+// --cable-out L --depth-band MIN:MAX: the speed window.
+int planSpeeds(const SimulationConfig& config, const Options& o, const Eigen::Vector3d& current)
+{
+  const double cable_out = single(o.cable_out, "--cable-out");
+  const size_t colon = o.depth_band.find(':');
+  if (colon == std::string::npos)
+    throw std::invalid_argument("--depth-band '" + o.depth_band + "' must be MIN:MAX [m]");
+  const double lo = single(o.depth_band.substr(0, colon), "--depth-band"),
+               hi = single(o.depth_band.substr(colon + 1), "--depth-band");
+  if (!(lo < hi))
+    throw std::invalid_argument("--depth-band '" + o.depth_band + "': MIN must be below MAX");
+  const SpeedWindow w = speedWindow(config, cable_out, lo, hi, current);
+  if (!w.found)
+  {
+    std::printf("tow_sim_chart: unreachable: %s\n", w.reason.c_str());
+    return 3;
+  }
+  std::printf("tow_sim_chart: with %g m out the vehicle stays between %g and %g m from %.3f to %.3f m/s\n", cable_out,
+              lo, hi, w.slowest, w.fastest);
+  return 0;
+}
 }  // namespace
 
 int main(int argc, char** argv)
@@ -110,6 +175,11 @@ int main(int argc, char** argv)
   try
   {
     config = loadConfigFile(o.config_path);
+    if (!o.target_depth.empty() || !o.depth_band.empty())
+    {
+      current = currentFrom(o.current);
+      return o.target_depth.empty() ? planSpeeds(config, o, current) : planDepth(config, o, current);
+    }
     speeds = parseRange(o.speeds, "--speeds");
     cable_outs = parseRange(o.cable_out, "--cable-out");
     for (double s : speeds)

@@ -71,6 +71,89 @@ std::vector<ChartPoint> towingChart(const SimulationConfig& config, const std::v
   return points;
 }
 
+CableOutPlan planCableOut(const SimulationConfig& config, double target_depth, double speed,
+                          const Eigen::Vector3d& current_W, double min_length, double max_length, double tolerance)
+{
+  CableOutPlan plan;
+  auto at = [&](double length) { return chartPoint(config, speed, length, current_W); };
+  ChartPoint lo = at(min_length), hi = at(max_length);
+  if (!lo.converged || !hi.converged)
+  {
+    plan.reason = "no steady tow at " + std::string(lo.converged ? "the longest" : "the shortest") +
+                  " cable out: " + (lo.converged ? hi.error : lo.error);
+    return plan;
+  }
+  if (target_depth < lo.depth || target_depth > hi.depth)
+  {
+    std::ostringstream why;
+    why << "at " << speed << " m/s the vehicle runs between " << lo.depth << " m (" << min_length << " m out) and "
+        << hi.depth << " m (" << max_length << " m out): " << target_depth << " m is out of reach";
+    plan.reason = why.str();
+    return plan;
+  }
+  double a = min_length, b = max_length;
+  ChartPoint mid = lo;
+  for (int i = 0; i < 200 && b - a > 1e-6; ++i)
+  {
+    const double m = 0.5 * (a + b);
+    mid = at(m);
+    if (!mid.converged)
+    {
+      plan.reason = "no steady tow at " + std::to_string(m) + " m out: " + mid.error;
+      return plan;
+    }
+    if (std::abs(mid.depth - target_depth) <= tolerance)
+      break;
+    (mid.depth < target_depth ? a : b) = m;
+  }
+  plan.reachable = true;
+  plan.cable_out = mid.cable_out;
+  plan.point = mid;
+  return plan;
+}
+
+SpeedWindow speedWindow(const SimulationConfig& config, double cable_out, double depth_min, double depth_max,
+                        const Eigen::Vector3d& current_W, double slowest_allowed, double fastest_allowed)
+{
+  SpeedWindow w;
+  auto depth = [&](double speed)
+  {
+    const ChartPoint p = chartPoint(config, speed, cable_out, current_W);
+    return p.converged ? p.depth : std::numeric_limits<double>::quiet_NaN();
+  };
+  // The speed in [lo, hi] where the depth (falling with speed) crosses `level`.
+  auto crossing = [&](double level, double lo, double hi)
+  {
+    for (int i = 0; i < 100 && hi - lo > 1e-4; ++i)
+    {
+      const double m = 0.5 * (lo + hi);
+      (depth(m) > level ? lo : hi) = m;
+    }
+    return 0.5 * (lo + hi);
+  };
+  const double d_slow = depth(slowest_allowed), d_fast = depth(fastest_allowed);
+  if (!std::isfinite(d_slow) || !std::isfinite(d_fast))
+  {
+    w.reason = "no steady tow at one end of the speeds searched";
+    return w;
+  }
+  if (d_slow < depth_min || d_fast > depth_max)
+  {
+    std::ostringstream why;
+    why << "with " << cable_out << " m out the vehicle runs between " << d_fast << " m (" << fastest_allowed
+        << " m/s) and " << d_slow << " m (" << slowest_allowed << " m/s): the band " << depth_min << " .. " << depth_max
+        << " m is out of reach";
+    w.reason = why.str();
+    return w;
+  }
+  w.slowest = d_slow <= depth_max ? slowest_allowed : crossing(depth_max, slowest_allowed, fastest_allowed);
+  w.fastest = d_fast >= depth_min ? fastest_allowed : crossing(depth_min, slowest_allowed, fastest_allowed);
+  w.found = w.slowest <= w.fastest;
+  if (!w.found)
+    w.reason = "the depth does not fall monotonically with speed here";
+  return w;
+}
+
 std::vector<double> parseRange(const std::string& text, const std::string& option)
 {
   std::vector<double> parts;

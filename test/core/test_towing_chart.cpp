@@ -130,6 +130,35 @@ TEST(TowingChart, RangesAndTheMarkingOfPointsWithoutAnEquilibrium)
             "speed,cable_out,current,depth,layback,tension_ship,tension_vehicle,ship_angle,max_tension,converged");
 }
 
+// Inverse planning round trip: the planned cable out puts the steady vehicle within 0.1 m of the target;
+// a depth beyond the winch's limits is reported, with the reachable range. The speed window's ends put the
+// vehicle on the band's edges.
+TEST(TowingChart, PlanningFindsTheCableOutForADepthAndTheSpeedsForABand)
+{
+  const SimulationConfig config;
+  for (auto [depth, speed] : { std::pair<double, double>{ 150.0, 2.0 }, { 60.0, 1.0 }, { 400.0, 3.0 } })
+  {
+    const CableOutPlan plan = planCableOut(config, depth, speed, Eigen::Vector3d::Zero(), 50.0, 2000.0);
+    ASSERT_TRUE(plan.reachable) << plan.reason;
+    const ChartPoint check = chartPoint(config, speed, plan.cable_out, Eigen::Vector3d::Zero());
+    std::printf("%.0f m at %.0f m/s: %.2f m out, steady depth %.3f m\n", depth, speed, plan.cable_out, check.depth);
+    EXPECT_NEAR(check.depth, depth, 0.1);
+  }
+  const CableOutPlan deep = planCableOut(config, 3000.0, 2.0, Eigen::Vector3d::Zero(), 50.0, 2000.0);
+  EXPECT_FALSE(deep.reachable);
+  EXPECT_NE(deep.reason.find("out of reach"), std::string::npos) << deep.reason;
+  const CableOutPlan shallow = planCableOut(config, 5.0, 1.0, Eigen::Vector3d::Zero(), 50.0, 2000.0);
+  EXPECT_FALSE(shallow.reachable);
+
+  const SpeedWindow w = speedWindow(config, 500.0, 100.0, 200.0, Eigen::Vector3d::Zero());
+  ASSERT_TRUE(w.found) << w.reason;
+  std::printf("500 m out, 100 .. 200 m: %.3f .. %.3f m/s\n", w.slowest, w.fastest);
+  EXPECT_NEAR(chartPoint(config, w.slowest, 500.0, Eigen::Vector3d::Zero()).depth, 200.0, 0.05);
+  EXPECT_NEAR(chartPoint(config, w.fastest, 500.0, Eigen::Vector3d::Zero()).depth, 100.0, 0.05);
+  EXPECT_GT(chartPoint(config, 0.5 * (w.slowest + w.fastest), 500.0, Eigen::Vector3d::Zero()).depth, 100.0);
+  EXPECT_FALSE(speedWindow(config, 100.0, 300.0, 400.0, Eigen::Vector3d::Zero()).found);
+}
+
 // The tool end to end: a 3 x 2 chart with a head current, and a refusal.
 TEST(TowingChart, TheToolWritesTheChartAndRefusesBadArguments)
 {

@@ -37,6 +37,33 @@ ChartPoint chartPoint(const SimulationConfig& config, double speed, double cable
 std::vector<ChartPoint> towingChart(const SimulationConfig& config, const std::vector<double>& speeds,
                                     const std::vector<double>& cable_outs, const Eigen::Vector3d& current_W);
 
+// The cable out that puts the vehicle at target_depth [m] at `speed` [m/s] (with current_W), between
+// min_length and max_length [m] (the winch's limits): bisection on the chart's depth, which grows with the
+// cable out, to `tolerance` [m] of depth. Unreachable (no equilibrium at an end, or the target outside
+// the depths of the two limits) is reported with the reachable range in `reason`.
+struct CableOutPlan
+{
+  bool reachable = false;
+  double cable_out = 0.0;  // [m]
+  ChartPoint point;        // the steady tow with that cable out
+  std::string reason;      // why not, when unreachable
+};
+CableOutPlan planCableOut(const SimulationConfig& config, double target_depth, double speed,
+                          const Eigen::Vector3d& current_W, double min_length, double max_length,
+                          double tolerance = 0.01);
+
+// The ship speeds [m/s] within [slowest_allowed, fastest_allowed] that keep the vehicle on cable_out [m]
+// between depth_min and depth_max [m]: the depth falls as the speed rises, so the window's ends are where
+// it crosses depth_max (slowest) and depth_min (fastest), found by bisection to 1e-4 m/s.
+struct SpeedWindow
+{
+  bool found = false;
+  double slowest = 0.0, fastest = 0.0;  // [m/s]
+  std::string reason;
+};
+SpeedWindow speedWindow(const SimulationConfig& config, double cable_out, double depth_min, double depth_max,
+                        const Eigen::Vector3d& current_W, double slowest_allowed = 0.1, double fastest_allowed = 10.0);
+
 // FROM:TO:STEP [the unit's] as a list (TO included within STEP/1000); throws std::invalid_argument naming
 // `option` for a malformed range, STEP <= 0, FROM > TO or more than 10000 values.
 std::vector<double> parseRange(const std::string& text, const std::string& option);
