@@ -56,11 +56,14 @@ sanitize: deps
 	  > $(SAN_DIR).ctest.log 2>&1 || { tail -n 80 $(SAN_DIR).ctest.log; exit 1; }
 	@tail -n 3 $(SAN_DIR).ctest.log
 
-# The node for 10 minutes of wall time beside a misbehaving odometry publisher (make test runs 2), and an
+# The node for 10 minutes of wall time beside a misbehaving odometry publisher (make test runs 2), the
+# node and ship_motion_node for 10 minutes in an irregular sea (make test: 25 s in regular waves), and an
 # hour's tow in an irregular sea in the batch (make test runs 10 minutes).
 soak: build
 	cd $(WS) && catkin_make $(CATKIN_ARGS) -j$(JOBS) tests
 	cd $(WS) && source devel/setup.bash && rostest tow_sim odom_soak.test duration:=600
+	cd $(WS) && source devel/setup.bash && rostest tow_sim ship_in_waves.test duration:=600 \
+	  config:=$(REPO)/test/ros/waves_irregular_config.yaml
 	TOW_SIM_SEAWAY_SECONDS=3600 $(WS)/devel/lib/tow_sim/test_waves --gtest_filter=Waves.AnIrregularSeaTowStaysBounded
 
 # The implicit stepper against tight dopri5 on the four manoeuvre scenarios at nu = 100 and 1000 (make test

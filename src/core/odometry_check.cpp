@@ -7,6 +7,12 @@ namespace tow_sim
 {
 namespace
 {
+// [s] a stamp closer than this to the previous one is a duplicate: the track's quintic pieces need spans that
+// their fifth powers do not underflow (found by fuzzing: stamps 1e-318 s apart made the track infinite).
+constexpr double kMinStampSpacing = 1e-6;
+// [s] and a stamp this far from the time origin (31 years) would overflow them (fuzzing: -4e307 s).
+constexpr double kMaxStamp = 1e9;
+
 // The message on its own: frame, finite fields, position, quaternion, stamp against the clock and the track.
 // Returns why it is refused, or "".
 std::string messageProblem(const OdometryInput& in, const OdometryLimits& limits, const ShipTrack& track, double now)
@@ -17,6 +23,8 @@ std::string messageProblem(const OdometryInput& in, const OdometryLimits& limits
   else if (!std::isfinite(in.t) || !in.p_W.allFinite() || !in.q_wxyz.allFinite() || !in.v_S.allFinite() ||
            !in.w_S.allFinite())
     os << "a stamp, pose or twist field is not finite";
+  else if (!(std::abs(in.t) <= kMaxStamp))
+    os << "header.stamp is " << in.t << " s from the time origin (beyond +-1e9 s)";
   else if (!(in.p_W.cwiseAbs().maxCoeff() <= limits.max_position))
     os << "pose.pose.position has a component beyond +-" << limits.max_position << " m";
   else if (std::abs(in.q_wxyz.norm() - 1.0) > 0.01)
@@ -26,8 +34,8 @@ std::string messageProblem(const OdometryInput& in, const OdometryLimits& limits
   else if (in.t < now - limits.max_age)
     os << "header.stamp is " << now - in.t << " s in the past (more than max_odom_age = " << limits.max_age
        << " s): is the publisher on another clock (use_sim_time, rosbag play --clock)?";
-  else if (!track.empty() && !(in.t > track.newestTime()))
-    os << "header.stamp is not after the previous message's (duplicated or reordered)";
+  else if (!track.empty() && !(in.t >= track.newestTime() + kMinStampSpacing))
+    os << "header.stamp is not after the previous message's by 1 us or more (duplicated or reordered)";
   return os.str();
 }
 }  // namespace

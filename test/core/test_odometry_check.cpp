@@ -59,7 +59,14 @@ TEST(OdometryCheck, RefusesEachKindOfBadMessage)
   in = good(1.5);
   in.q_wxyz = Eigen::Vector4d(1.5, 0, 0, 0);
   refused(in, "orientation has norm 1.5");
-  refused(good(1.0), "not after the previous");  // duplicate
+  refused(good(1.0), "not after the previous");         // duplicate
+  refused(good(1.0 + 1e-9), "not after the previous");  // as good as one (1 us at least)
+  {
+    ShipTrack none;  // a stamp 1e10 s from the origin would overflow the track's pieces
+    const OdometryResult far = checkOdometry(good(-1e10), limits, none, -1e10);
+    EXPECT_FALSE(far.accepted);
+    EXPECT_NE(far.reason.find("beyond +-1e9 s"), std::string::npos) << far.reason;
+  }
   refused(good(0.5), "not after the previous");  // reordered
   refused(good(5.0), "in the future");
   ShipTrack empty;  // even the first message: a stamp from another clock would start the cable there
