@@ -103,6 +103,7 @@ TowSimNode::TowSimNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   vehicle_force_pub_ = nh_.advertise<geometry_msgs::WrenchStamped>("vehicle/tow_force", 10);
   reset_srv_ = pnh_.advertiseService("reset", &TowSimNode::onReset, this);
   pause_srv_ = pnh_.advertiseService("set_paused", &TowSimNode::onSetPaused, this);
+  plan_srv_ = pnh_.advertiseService("plan_cable_out", &TowSimNode::onPlanCableOut, this);
   physics_timer_ = nh_.createTimer(ros::Duration(1.0 / params_.physics_rate), [this](const ros::TimerEvent& e)
                                    { guarded("physics tick", [&] { physicsTick(e); }); });
   publish_timer_ = nh_.createTimer(ros::Duration(1.0 / params_.publish_rate), [this](const ros::TimerEvent& e)
@@ -300,6 +301,7 @@ void TowSimNode::onWinchCommand(const std_msgs::Float64::ConstPtr& msg)
     ROS_WARN_THROTTLE(2.0, "tow_sim: winch/command ignored: no ship odometry yet");
     return;
   }
+  winch_target_.reset();  // a command from outside takes over from a plan being executed
   try
   {
     const double applied = run_.setWinchCommand(msg->data);
@@ -377,6 +379,7 @@ void TowSimNode::physicsTick(const ros::TimerEvent&)
       std::min({ std::max(wanted, run_.time() + step), available, run_.time() + std::max(0.5, step) });
   if (target <= run_.time())
     return;
+  driveWinch();
   integrateTo(target);
 }
 

@@ -31,6 +31,9 @@
 #include "tow_sim/CableState.h"
 #include "tow_sim/CurrentProfile.h"
 #include "tow_sim/FinCommand.h"
+#include "tow_sim/PlanCableOut.h"
+#include "tow_sim/config/config.h"
+#include "tow_sim/scenario/towing_chart.h"
 
 namespace
 {
@@ -735,6 +738,50 @@ TEST(TowSimNode, WinchPaysOutOverTheSeabedAndTheStateSaysSo)
   EXPECT_NEAR(world->rec_.state["base"].cable_length, 100.0, 1e-9);
   EXPECT_GE(rejectedMessages("winch"), rejected_before + 2);  // NaN rate and the bad profile
   EXPECT_GE(rejectedMessages("base"), base_rejected_before + 1);
+}
+
+// ~plan_cable_out: the base node answers what the towing chart's planner says for its configuration (the
+// library is checked against the settled dynamics in test_towing_chart); a depth out of reach and execute
+// without a winch are refused; the winch node pays out or hauls in to the plan and stops there.
+TEST(TowSimNode, PlanCableOutAnswersAndTheWinchExecutesIt)
+{
+  ros::ServiceClient base = world->nh_.serviceClient<tow_sim::PlanCableOut>("/base/tow_sim/plan_cable_out");
+  ros::ServiceClient winch = world->nh_.serviceClient<tow_sim::PlanCableOut>("/winch/tow_sim/plan_cable_out");
+  ASSERT_TRUE(base.waitForExistence(ros::Duration(5.0)));
+  ASSERT_TRUE(winch.waitForExistence(ros::Duration(5.0)));
+  const tow_sim::SimulationConfig config =
+      tow_sim::loadConfigFile(std::string(TOW_SIM_SOURCE_DIR) + "/test/ros/test_config.yaml");
+  const tow_sim::CableOutPlan expected = tow_sim::planCableOut(config, 50.0, 2.0, Eigen::Vector3d::Zero(),
+                                                               config.winch.min_length, config.winch.max_length);
+  ASSERT_TRUE(expected.reachable) << expected.reason;
+  tow_sim::PlanCableOut plan;
+  plan.request.depth = 50.0;
+  plan.request.speed = 2.0;
+  ASSERT_TRUE(base.call(plan));
+  EXPECT_TRUE(plan.response.reachable) << plan.response.message;
+  EXPECT_NEAR(plan.response.cable_out, expected.cable_out, 1e-6);
+  EXPECT_NEAR(plan.response.depth, 50.0, 0.1);
+  EXPECT_FALSE(plan.response.executing);
+  plan.request.depth = 5000.0;
+  ASSERT_TRUE(base.call(plan));
+  EXPECT_FALSE(plan.response.reachable);
+  EXPECT_NE(plan.response.message.find("out of reach"), std::string::npos) << plan.response.message;
+  plan.request.depth = 50.0;
+  plan.request.execute = true;
+  ASSERT_TRUE(base.call(plan));
+  EXPECT_NE(plan.response.message.find("needs the winch"), std::string::npos) << plan.response.message;
+
+  // The winch node (min 80 m, max 140 m): to the cable out for 50 m there.
+  ASSERT_TRUE(winch.call(plan));
+  ASSERT_TRUE(plan.response.reachable) << plan.response.message;
+  EXPECT_TRUE(plan.response.executing) << plan.response.message;
+  world->advance(60.0);
+  std::lock_guard<std::mutex> lock(world->rec_.mutex);
+  const tow_sim::CableState& s = world->rec_.state["winch"];
+  std::printf("plan_cable_out: %.2f m out for 50 m at 2 m/s (library %.2f m); the winch node at %.2f m, %.4f m/s\n",
+              plan.response.cable_out, expected.cable_out, s.cable_length, s.payout_rate);
+  EXPECT_NEAR(s.cable_length, plan.response.cable_out, 0.1);
+  EXPECT_NEAR(s.payout_rate, 0.0, 0.02);
 }
 
 TEST(TowSimNode, BadConfigurationExitsNamingTheParameter)

@@ -15,12 +15,14 @@
 #include <cstdint>
 #include <deque>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include <std_msgs/Float64.h>
 
 #include "tow_sim/CurrentProfile.h"
 #include "tow_sim/FinCommand.h"
+#include "tow_sim/PlanCableOut.h"
 #include "tow_sim/config/config.h"
 #include "tow_sim/config/node_params.h"
 #include "tow_sim/core/odometry_check.h"
@@ -45,6 +47,10 @@ private:
   void onWinchCommand(const std_msgs::Float64::ConstPtr& msg);
   bool onReset(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
   bool onSetPaused(std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res);
+  // ~plan_cable_out (tow_sim_node_planning.cpp): the towing chart's planner with this node's configuration
+  // and current; with `execute`, the winch goes to the planned cable out (driveWinch, each physics tick).
+  bool onPlanCableOut(tow_sim::PlanCableOut::Request& req, tow_sim::PlanCableOut::Response& res);
+  void driveWinch();
   void physicsTick(const ros::TimerEvent& event);
   void publishTick(const ros::TimerEvent& event);
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
@@ -115,7 +121,9 @@ private:
   ros::Subscriber odom_sub_, fin_sub_, current_sub_, current_profile_sub_, winch_sub_;
   ros::Publisher state_pub_, marker_pub_, vehicle_odom_pub_, fin_loads_pub_;
   ros::Publisher ship_force_pub_, vehicle_force_pub_;  // the cable's forces on the ship and the vehicle
-  ros::ServiceServer reset_srv_, pause_srv_;
+  ros::ServiceServer reset_srv_, pause_srv_, plan_srv_;
+  std::optional<double> winch_target_;  // [m] a planned cable out the winch is going to (cleared on arrival
+                                        // or by a winch/command)
   ros::Timer physics_timer_, publish_timer_, status_timer_;
   tf2_ros::TransformBroadcaster tf_broadcaster_;
   diagnostic_updater::Updater diagnostics_;

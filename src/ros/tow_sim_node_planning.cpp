@@ -1,0 +1,85 @@
+// TowSimNode's ~plan_cable_out service and the winch driven to a planned cable out.
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "tow_sim/ros/tow_sim_node.h"
+#include "tow_sim/scenario/towing_chart.h"
+
+namespace tow_sim
+{
+namespace
+{
+constexpr double kArrived = 0.05;  // [m] the winch is there within this of the planned cable out
+}  // namespace
+
+bool TowSimNode::onPlanCableOut(tow_sim::PlanCableOut::Request& req, tow_sim::PlanCableOut::Response& res)
+{
+  res.reachable = res.executing = false;
+  std::ostringstream why;
+  if (!(std::isfinite(req.depth) && req.depth > 0.0 && req.depth <= 12000.0))
+    why << "depth = " << req.depth << " must be in (0, 12000] [m]";
+  else if (!(std::isfinite(req.speed) && req.speed >= 0.0 && req.speed <= 15.0))
+    why << "speed = " << req.speed << " must be in [0, 15] [m/s] (0: the ship's present speed)";
+  else if (req.speed == 0.0 && ship_->empty())
+    why << "speed 0 asks for the ship's present speed: no ship odometry yet";
+  else if (req.execute && !config_.winch.enabled)
+    why << "execute needs the winch: winch.enabled is false";
+  if (!why.str().empty())
+  {
+    res.message = why.str();
+    return true;
+  }
+  const double speed = req.speed > 0.0 ? req.speed : ship_->pose(ship_->newestTime()).speed;
+  SimulationConfig c = config_;
+  if (started_)  // the current now (the topics may have changed it)
+  {
+    c.environment.current_W = run_.simulator().data().environment.current_W;
+    c.environment.current_profile = run_.simulator().data().environment.current_profile;
+  }
+  const CableOutPlan plan =
+      planCableOut(c, req.depth, speed, c.environment.current_W, config_.winch.min_length, config_.winch.max_length);
+  res.reachable = plan.reachable;
+  if (!plan.reachable)
+  {
+    res.message = plan.reason;
+    return true;
+  }
+  res.cable_out = plan.cable_out;
+  res.depth = plan.point.depth;
+  res.tension_ship = plan.point.tension_ship;
+  res.tension_vehicle = plan.point.tension_vehicle;
+  std::ostringstream what;
+  what << plan.cable_out << " m out puts the vehicle at " << plan.point.depth << " m at " << speed << " m/s";
+  if (req.execute && !started_)
+    what << "; not executed: no ship odometry yet";
+  else if (req.execute)
+  {
+    winch_target_ = plan.cable_out;
+    res.executing = true;
+    what << "; the winch is on its way";
+  }
+  res.message = what.str();
+  ROS_INFO("tow_sim: plan_cable_out: %s", res.message.c_str());
+  return true;
+}
+
+void TowSimNode::driveWinch()
+{
+  if (!winch_target_ || !config_.winch.enabled)
+    return;
+  const double remaining = *winch_target_ - run_.simulator().cableLength();
+  if (std::abs(remaining) <= kArrived)
+  {
+    winch_target_.reset();
+    run_.setWinchCommand(0.0);
+    ROS_INFO("tow_sim: the winch has reached the planned cable out");
+    return;
+  }
+  // Payout rate = remaining length / (4 x the winch's response time), within max_rate: with the winch's own
+  // first-order lag the approach is critically damped.
+  const double limit = config_.winch.max_rate;
+  run_.setWinchCommand(std::clamp(remaining / (4.0 * config_.winch.response_time), -limit, limit));
+}
+
+}  // namespace tow_sim
