@@ -19,7 +19,7 @@ const char* timeseriesHeader()
 
 const char* shapesHeader()
 {
-  return "t,joint,x,y,z,tension";
+  return "t,joint,x,y,z,tension,slack";
 }
 
 std::string timeseriesRow(const TowSnapshot& s)
@@ -48,7 +48,8 @@ std::string shapesRows(const TowSnapshot& s)
   rows.precision(10);
   for (Eigen::Index j = 0; j < s.joints.cols(); ++j)
     rows << s.t << ',' << j + 1 << ',' << s.joints(0, j) << ',' << s.joints(1, j) << ',' << s.joints(2, j) << ','
-         << (j <= s.segments ? s.tensions.col(j).norm() : 0.0) << '\n';
+         << (j <= s.segments ? s.tensions.col(j).norm() : 0.0) << ','
+         << (j <= s.segments && s.slack[static_cast<size_t>(j)] ? 1 : 0) << '\n';
   return rows.str();
 }
 

@@ -202,7 +202,7 @@ TEST(Batch, EveryScenarioRunsAndWritesTheDocumentedColumns)
       EXPECT_LT(std::stod(rows[r][20]), length_bound) << name << " row " << r;
     }
     const auto shapes = readCsv(out + "/shapes.csv");
-    EXPECT_EQ(shapes[0], (std::vector<std::string>{ "t", "joint", "x", "y", "z", "tension" }));
+    EXPECT_EQ(shapes[0], (std::vector<std::string>{ "t", "joint", "x", "y", "z", "tension", "slack" }));
     if (!sc.config.winch.enabled)  // else the joint count changes
     {
       EXPECT_EQ((shapes.size() - 1) % static_cast<size_t>(sc.config.cable.segments + 2), 0u);
