@@ -61,10 +61,8 @@ TowSnapshot interpolate(const TowSnapshot& a, const TowSnapshot& b, double t)
   const double w = span > 0.0 ? std::clamp((t - a.t) / span, 0.0, 1.0) : 1.0;
   TowSnapshot out = w < 0.5 ? a : b;  // the discrete outputs, and the whole across a change of layout
   out.max_length_error = std::max(a.max_length_error, b.max_length_error);
-  out.tension_ship_range = a.tension_ship_range;
-  out.tension_ship_range.add(b.tension_ship_range);
-  out.tension_vehicle_range = a.tension_vehicle_range;
-  out.tension_vehicle_range.add(b.tension_vehicle_range);
+  out.tension_ship_range = b.tension_ship_range;  // the extremes of the interval that ends at b
+  out.tension_vehicle_range = b.tension_vehicle_range;
   if (a.joints.cols() != b.joints.cols() || a.tensions.cols() != b.tensions.cols())
     return out;
   out.t = lerp(a.t, b.t, w);

@@ -65,10 +65,11 @@ ChainState TowRun::initialState(double t, std::string* warning) const
     case InitialShape::Type::kEquilibrium:
       try
       {
-        // The steady tow at the tow point's horizontal velocity: a ship heaving or pitching in waves does not
-        // tow upward or downward on average.
-        state = steadyTowEquilibrium(*model_, sim_.data(), t, tow.p_W, Eigen::Vector3d(tow.v_W.x(), tow.v_W.y(), 0.0))
-                    .state;
+        // The steady tow in calm water at the tow point's horizontal velocity: a ship heaving or pitching in
+        // waves does not tow upward or downward on average, and the sea is no steady load.
+        ChainData calm = sim_.data();
+        calm.environment.wave_field.reset();
+        state = steadyTowEquilibrium(*model_, calm, t, tow.p_W, Eigen::Vector3d(tow.v_W.x(), tow.v_W.y(), 0.0)).state;
         break;
       }
       catch (const std::runtime_error& e)

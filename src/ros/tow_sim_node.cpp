@@ -326,6 +326,7 @@ bool TowSimNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Respons
   }
   diverging_ = false;
   restart_walls_.clear();
+  winch_target_.reset();
   start(started_ ? run_.time() : ship_->newestTime());
   res.success = true;
   res.message = "restarted from the initial shape (" + params_.initial_shape + ") at the current ship pose";
@@ -450,6 +451,7 @@ void TowSimNode::restartAfterDivergence(const std::string& why)
 void TowSimNode::forgetShip(const std::string& why)
 {
   ROS_WARN("tow_sim: %s: laying the cable out again at the next ship odometry", why.c_str());
+  winch_target_.reset();
   ship_->clear();
   started_ = false;
   holding_ = false;

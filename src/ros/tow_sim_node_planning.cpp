@@ -1,4 +1,5 @@
 // TowSimNode's ~plan_cable_out service and the winch driven to a planned cable out.
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -31,14 +32,19 @@ bool TowSimNode::onPlanCableOut(tow_sim::PlanCableOut::Request& req, tow_sim::Pl
     return true;
   }
   const double speed = req.speed > 0.0 ? req.speed : ship_->pose(ship_->newestTime()).speed;
+  // The chart tows along +x from a tow point at the surface: the current (now: the topics may have changed
+  // it) turned into the ship's heading, and the target measured from the tow point's height.
   SimulationConfig c = config_;
-  if (started_)  // the current now (the topics may have changed it)
-  {
-    c.environment.current_W = run_.simulator().data().environment.current_W;
-    c.environment.current_profile = run_.simulator().data().environment.current_profile;
-  }
-  const CableOutPlan plan =
-      planCableOut(c, req.depth, speed, c.environment.current_W, config_.winch.min_length, config_.winch.max_length);
+  const Environment& now = started_ ? run_.simulator().data().environment : config_.environment;
+  const double heading = ship_->empty() ? 0.0 : ship_->pose(ship_->newestTime()).heading;
+  const Eigen::Matrix3d to_ship = Eigen::AngleAxisd(-heading, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  c.environment.current_W = to_ship * now.current_W;
+  c.environment.current_profile = now.current_profile;
+  for (CurrentSample& sample : c.environment.current_profile)
+    sample.velocity_W = to_ship * sample.velocity_W;
+  const double height = params_.tow_point_S.z();
+  const CableOutPlan plan = planCableOut(c, req.depth + height, speed, c.environment.current_W,
+                                         config_.winch.min_length, config_.winch.max_length);
   res.reachable = plan.reachable;
   if (!plan.reachable)
   {
@@ -46,11 +52,11 @@ bool TowSimNode::onPlanCableOut(tow_sim::PlanCableOut::Request& req, tow_sim::Pl
     return true;
   }
   res.cable_out = plan.cable_out;
-  res.depth = plan.point.depth;
+  res.depth = plan.point.depth - height;
   res.tension_ship = plan.point.tension_ship;
   res.tension_vehicle = plan.point.tension_vehicle;
   std::ostringstream what;
-  what << plan.cable_out << " m out puts the vehicle at " << plan.point.depth << " m at " << speed << " m/s";
+  what << plan.cable_out << " m out puts the vehicle at " << res.depth << " m at " << speed << " m/s";
   if (req.execute && !started_)
     what << "; not executed: no ship odometry yet";
   else if (req.execute)
@@ -77,9 +83,11 @@ void TowSimNode::driveWinch()
     return;
   }
   // Payout rate = remaining length / (4 x the winch's response time), within max_rate: with the winch's own
-  // first-order lag the approach is critically damped.
+  // first-order lag the approach is critically damped. The command holds for a physics tick, so the time
+  // constant is at least two ticks (else the loop would hunt).
   const double limit = config_.winch.max_rate;
-  run_.setWinchCommand(std::clamp(remaining / (4.0 * config_.winch.response_time), -limit, limit));
+  const double time_constant = std::max(4.0 * config_.winch.response_time, 2.0 / params_.physics_rate);
+  run_.setWinchCommand(std::clamp(remaining / time_constant, -limit, limit));
 }
 
 }  // namespace tow_sim

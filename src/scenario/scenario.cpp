@@ -131,7 +131,7 @@ void readShipFiles(Section& ship, Scenario& sc, const std::string& base_dir)
       sc.rao_file = resolvePath(sc.rao_file, base_dir);
       sc.rao = std::make_shared<const RaoTable>(RaoTable::fromCsvFile(sc.rao_file));
     }
-    else
+    else if (sc.config.environment.waves.type != WaveParams::Type::kNone)  // (waves need gravity > 0)
       sc.rao = std::make_shared<const RaoTable>(RaoTable::genericVessel(sc.config.environment.gravity));
   }
   catch (const std::invalid_argument& e)

@@ -68,7 +68,10 @@ ShipHistory replayedPath(const Scenario& sc)
       v_tow += w[j - first] * tow[j];
       v_ship += w[j - first] * Eigen::Vector2d(m[j].x, m[j].y);
     }
-    path.add(m[i].t, tow[i], v_tow, ShipPose{ m[i].x, m[i].y, yaw[i], v_ship.norm(), m[i].z, roll[i], m[i].pitch });
+    if (!path.add(m[i].t, tow[i], v_tow,
+                  ShipPose{ m[i].x, m[i].y, yaw[i], v_ship.norm(), m[i].z, roll[i], m[i].pitch }))
+      throw std::invalid_argument("ship motion file: the row at t = " + std::to_string(m[i].t) +
+                                  " s gives a non-finite tow point motion");
   }
   return path;
 }
@@ -83,10 +86,14 @@ std::vector<ShipMotionSample> loadShipMotionFile(const std::string& path)
   for (const NumericCsvRow& row : rows)
   {
     const std::vector<double>& c = row.values;
-    if (!out.empty() && !(c[0] > out.back().t))
+    // As for odometry: at least 1 us apart and within 1e9 s of t = 0 (the track's pieces stay finite).
+    if (!out.empty() && !(c[0] >= out.back().t + 1e-6))
       throw std::invalid_argument("ship motion file '" + path + "' line " + std::to_string(row.line) +
-                                  ": times must increase strictly (t = " + std::to_string(c[0]) + " after " +
-                                  std::to_string(out.back().t) + ")");
+                                  ": times must increase strictly, by 1 us or more (t = " + std::to_string(c[0]) +
+                                  " after " + std::to_string(out.back().t) + ")");
+    if (!(std::abs(c[0]) <= 1e9) || !(std::abs(c[1]) <= 1e7) || !(std::abs(c[2]) <= 1e7) || !(std::abs(c[3]) <= 1e4))
+      throw std::invalid_argument("ship motion file '" + path + "' line " + std::to_string(row.line) +
+                                  ": t must lie within +-1e9 s, x and y within +-1e7 m, z within +-1e4 m");
     out.push_back(ShipMotionSample{ c[0], c[1], c[2], c[3], c[4], c[5], c[6] });
   }
   return out;
@@ -100,16 +107,20 @@ ShipHistory buildShipPath(const Scenario& sc, double dt)
   ShipHistory path(1.0, samples + 10);
   ScriptedShip ship(sc.manoeuvres, sc.start_position.x(), sc.start_position.y(), sc.start_heading);
   std::unique_ptr<const WaveField> waves;
+  std::shared_ptr<const RaoTable> rao = sc.rao;
   const Environment& env = sc.config.environment;
   if (sc.wave_response && env.waves.type != WaveParams::Type::kNone)
+  {
     waves = std::make_unique<const WaveField>(env.waves, env.gravity);
-  const RaoTable rao = sc.rao ? *sc.rao : RaoTable::genericVessel(env.gravity);
+    if (!rao)
+      rao = std::make_shared<const RaoTable>(RaoTable::genericVessel(env.gravity));
+  }
   for (size_t k = 0; k < samples; ++k)
   {
     // The tow point moves with the ship as a rigid body: v + w x r, r the tow point's offset turned into the
     // world (by the heading, and in waves by the roll and pitch too; the heave moves the reference point).
     const ShipRigidMotion m = scriptedShipMotion(ship.time(), ship.x(), ship.y(), ship.heading(), ship.speed(),
-                                                 ship.yawRate(), waves.get(), &rao);
+                                                 ship.yawRate(), waves.get(), rao.get());
     Eigen::Vector3d p_tow, v_tow;
     towPointOf(m, sc.tow_point_S, p_tow, v_tow);
     path.add(ship.time(), p_tow, v_tow,

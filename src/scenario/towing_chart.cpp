@@ -30,6 +30,7 @@ ChartPoint chartPoint(const SimulationConfig& config, double speed, double cable
     c.cable.segments = std::max(1, static_cast<int>(std::lround(cable_out / config.cable.segmentLength())));
     c.cable.length = cable_out;
     c.environment.current_W = current_W;
+    c.environment.waves = WaveParams();         // the steady tow is a calm-water one
     c.winch.enabled = false;                    // the chart's lengths are the cable out, whatever the winch's limits
     c.seabed.type = SeabedParams::Type::kNone;  // the steady tow ignores the bottom
     auto ship = std::make_shared<ShipHistory>(1.0, 8);
@@ -106,9 +107,15 @@ CableOutPlan planCableOut(const SimulationConfig& config, double target_depth, d
       break;
     (mid.depth < target_depth ? a : b) = m;
   }
-  plan.reachable = true;
   plan.cable_out = mid.cable_out;
   plan.point = mid;
+  // The depth jumps a little where the segment count changes (10 m segments: centimetres); a target in
+  // such a jump is missed by more than the tolerance.
+  plan.reachable = std::abs(mid.depth - target_depth) <= std::max(tolerance, 0.1);
+  if (!plan.reachable)
+    plan.reason = "the steady depth jumps across " + std::to_string(target_depth) + " m near " +
+                  std::to_string(mid.cable_out) + " m out (the segment count changes there): closest " +
+                  std::to_string(mid.depth) + " m";
   return plan;
 }
 

@@ -337,6 +337,13 @@ TEST(ShipResponse, AMeasuredMotionFileIsReplayedWithContinuousAcceleration)
   EXPECT_NE(e.find("line 3: times must increase strictly"), std::string::npos) << e;
   e = error("ship: {rao_file: /nonexistent/rao.csv}");
   EXPECT_NE(e.find("ship.rao_file"), std::string::npos) << e;
+  e = error("ship: {motion_file: " +
+            writeFile("tow_sim_motion_close.csv", "t,x,y,z,roll,pitch,yaw\n0,0,0,0,0,0,0\n1e-9,0,0,0,0,0,0\n") + "}");
+  EXPECT_NE(e.find("line 3: times must increase strictly, by 1 us or more"), std::string::npos) << e;
+  // Calm water needs no RAOs: a configuration without gravity (vacuum-like studies) still loads and runs.
+  EXPECT_EQ(error("environment: {gravity: 0}\nsimulation: {duration: 10}"), "(accepted)");
+  EXPECT_FALSE(
+      buildShipPath(loadScenario(YAML::Load("environment: {gravity: 0}\nsimulation: {duration: 10}"))).empty());
 }
 
 }  // namespace

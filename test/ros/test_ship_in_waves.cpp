@@ -1,8 +1,9 @@
 // rostest: ship_motion_node in regular waves (test/ros/waves_config.yaml) and tow_sim_node towing in them,
-// in real time. Over ~duration (25 s; make soak: 600 s in an irregular sea): the ship heaves, rolls and pitches (the
-// generic vessel, head-and-beam seas); the cable's first joint, the tow point, is at every cable/state stamp the lever
-// arm p + Rz Ry Rx r_tow of the odometry's full pose (interpolated between its 20 Hz messages), written out here; the
-// waves and the ship's motion make the tension at the ship vary; nothing is NaN.
+// in real time. Over ~duration (25 s; make soak: 600 s in an irregular sea): the ship heaves, rolls and
+// pitches (the generic vessel, head-and-beam seas); the cable's first joint, the tow point, is at every
+// cable/state stamp the lever arm p + Rz Ry Rx r_tow of the odometry's full pose (interpolated between its
+// 20 Hz messages), written out here; the tension at the ship swings (the ship's heave and the waves on the
+// cable together: this does not tell them apart; the waves' loads are checked in test_waves); nothing is NaN.
 #include <gtest/gtest.h>
 
 #include <nav_msgs/Odometry.h>
