@@ -16,6 +16,20 @@ std::string trimmed(const std::string& s)
 }
 }  // namespace
 
+bool parseFiniteNumber(const std::string& text, double& value)
+{
+  size_t used = 0;
+  try
+  {
+    value = std::stod(text, &used);
+  }
+  catch (const std::exception&)
+  {
+    return false;
+  }
+  return used != 0 && used == text.size() && std::isfinite(value);
+}
+
 std::vector<NumericCsvRow> readNumericCsv(const std::string& path, int columns, const std::string& what,
                                           const std::string& column_names)
 {
@@ -46,17 +60,8 @@ std::vector<NumericCsvRow> readNumericCsv(const std::string& path, int columns, 
     while (std::getline(cells, cell, ','))
     {
       const std::string c = trimmed(cell);
-      size_t used = 0;
       double value = NAN;
-      try
-      {
-        value = std::stod(c, &used);
-      }
-      catch (const std::exception&)
-      {
-        used = 0;
-      }
-      if (used == 0 || used != c.size() || !std::isfinite(value))
+      if (!parseFiniteNumber(c, value))
         throw std::invalid_argument(at + "'" + c + "' is not a finite number");
       row.values.push_back(value);
     }

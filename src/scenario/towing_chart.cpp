@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "tow_sim/core/numeric_csv.h"
 #include "tow_sim/core/tow_run.h"
 
 namespace tow_sim
@@ -168,17 +169,8 @@ std::vector<double> parseRange(const std::string& text, const std::string& optio
   std::string part;
   while (std::getline(ss, part, ':'))
   {
-    size_t used = 0;
     double v = NAN;
-    try
-    {
-      v = std::stod(part, &used);
-    }
-    catch (const std::exception&)
-    {
-      used = 0;
-    }
-    if (used == 0 || used != part.size() || !std::isfinite(v))
+    if (!parseFiniteNumber(part, v))
       throw std::invalid_argument(option + " '" + text + "': '" + part + "' is not a number (FROM:TO:STEP)");
     parts.push_back(v);
   }

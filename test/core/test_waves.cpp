@@ -423,6 +423,25 @@ TEST(Waves, ANeutrallyBuoyantDragFreeChainMovingWithTheWaterIsAcceleratedWithIt)
   EXPECT_LT(approach_b, 0.02);
 }
 
+// The rows of a batch run's timeseries.csv (blank cells as 0), its header left out.
+std::vector<std::vector<double>> seriesRows(const std::string& csv)
+{
+  std::vector<std::vector<double>> rows;
+  std::istringstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  while (std::getline(in, line))
+  {
+    std::vector<double> c;
+    std::stringstream cells(line);
+    std::string cell;
+    while (std::getline(cells, cell, ','))
+      c.push_back(cell.empty() ? 0.0 : std::stod(cell));
+    rows.push_back(c);
+  }
+  return rows;
+}
+
 // A tow in an irregular head sea with the ship heaving and pitching (the generic vessel): no divergence,
 // the segment lengths held (the largest error a step leaves before projection small), the tension at the
 // ship positive and swinging about its calm-water value, the vehicle's depth bounded. 600 s here;
@@ -443,18 +462,10 @@ simulation: {duration: )" + std::to_string(seconds) +
   BatchResult result;
   ASSERT_NO_THROW(runScenario(sc, series, shapes, result));
   EXPECT_EQ(result.t_reached, seconds);
-  std::istringstream in(series.str());
-  std::string line;
-  std::getline(in, line);  // header
   double t_lo = 1e9, t_hi = 0.0, depth_lo = 1e9, depth_hi = 0.0, worst_length = 0.0, sum = 0.0;
   int rows = 0;
-  while (std::getline(in, line))
+  for (const std::vector<double>& c : seriesRows(series.str()))
   {
-    std::vector<double> c;
-    std::stringstream cells(line);
-    std::string cell;
-    while (std::getline(cells, cell, ','))
-      c.push_back(cell.empty() ? 0.0 : std::stod(cell));
     if (c[0] < 60.0)  // the waves switch on at t = 0
       continue;
     t_lo = std::min(t_lo, c[15]);
@@ -494,20 +505,7 @@ simulation: {duration: 120, output_interval: )" +
     std::ostringstream series, shapes;
     BatchResult result;
     runScenario(sc, series, shapes, result);
-    std::vector<std::vector<double>> rows;
-    std::istringstream in(series.str());
-    std::string line;
-    std::getline(in, line);
-    while (std::getline(in, line))
-    {
-      std::vector<double> c;
-      std::stringstream cells(line);
-      std::string cell;
-      while (std::getline(cells, cell, ','))
-        c.push_back(cell.empty() ? 0.0 : std::stod(cell));
-      rows.push_back(c);
-    }
-    return rows;
+    return seriesRows(series.str());
   };
   const auto coarse = run(2.0), fine = run(0.05);
   double worst = 0.0, swing = 0.0, wider = 0.0;

@@ -12,6 +12,9 @@ struct NumericCsvRow
   std::vector<double> values;  // exactly `columns` finite numbers
 };
 
+// The whole of `text` as a finite number (no trailing characters); false otherwise, `value` then unset.
+bool parseFiniteNumber(const std::string& text, double& value);
+
 // Reads `path`: blank lines and lines starting with # are skipped, the first other line is a header (not
 // checked), every further line holds `columns` comma-separated finite numbers. Throws
 // std::invalid_argument naming `what`, the file and the line ("rao file 'x.csv' line 7: ...").
