@@ -108,6 +108,25 @@ void addGeometricStiffness(const ElementKinematics& k, double mu, ElementJacobia
   out.dh_dx.bottomRightCorner<3, 3>() -= G;
 }
 
+void addAxialStiffness(const CableParams& cable, double rest_length, const ElementKinematics& k, ElementJacobian& out)
+{
+  // The elastic segment's tension T = max(0, EA eps + c deps/dt) on its joints (+T s forward, -T s aft)
+  // through its length and stretch rate along s (the axis held fixed): EA/d0 and c/d0 on s s^T, while taut.
+  const double rate = k.s.dot(k.v_a - k.v_f);
+  if (cable.axialTension(k.length, rate, rest_length) <= 0.0)
+    return;
+  const Eigen::Matrix3d ss = k.s * k.s.transpose();
+  const Eigen::Matrix3d Kx = (*cable.axial_stiffness / rest_length) * ss, Dv = (cable.axial_damping / rest_length) * ss;
+  for (Matrix6d* m : { &out.dh_dx, &out.dh_dv })
+  {
+    const Eigen::Matrix3d& G = m == &out.dh_dx ? Kx : Dv;
+    m->topLeftCorner<3, 3>() -= G;
+    m->topRightCorner<3, 3>() += G;
+    m->bottomLeftCorner<3, 3>() += G;
+    m->bottomRightCorner<3, 3>() -= G;
+  }
+}
+
 void elementJacobian(const ChainModel& model, int e, double t, const ElementKinematics& k,
                      const ChainGeometry& geometry, const ChainData& data, double mu, ElementJacobian& out,
                      const Vector6d* accelerations)
@@ -117,6 +136,8 @@ void elementJacobian(const ChainModel& model, int e, double t, const ElementKine
   else
     endBodyJacobian(model, e, t, k, geometry, data, accelerations, out);
   addGeometricStiffness(k, mu, out);
+  if (model.cable().elastic() && e < geometry.segments)
+    addAxialStiffness(model.cable(), geometry.elementLength(e), k, out);
 }
 
 }  // namespace tow_sim

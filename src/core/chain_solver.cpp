@@ -7,6 +7,26 @@
 
 namespace tow_sim
 {
+namespace
+{
+// (S20): an elastic segment's stretch. Its joints move apart along s, which the rigid projection has no
+// inertia for: the stretch mode's m/12 s s^T in the consistent-mass pattern [1 -1; -1 1] (with the rigid
+// part, m [1/3 1/6; 1/6 1/3] for the structural mass); its tension T = max(0, EA eps + c deps/dt) pulls the
+// forward joint aft (+T s) and the aft joint forward (-T s).
+void addStretch(const CableParams& cable, double rest_length, double mass, const ElementKinematics& k, ElementTerms& m)
+{
+  const Eigen::Matrix3d stretch = (mass / 12.0) * k.s * k.s.transpose();
+  m.M_ff += stretch;
+  m.M_aa += stretch;
+  m.M_fa -= stretch;
+  m.M_af -= stretch;
+  m.tension = cable.axialTension(k.length, k.s.dot(k.v_a - k.v_f), rest_length);
+  m.h_f += m.tension * k.s;
+  m.h_a -= m.tension * k.s;
+  m.c = 0.0;
+}
+}  // namespace
+
 void ChainSolver::solve(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data, double t,
                         const ShipEndState& ship, const Eigen::Ref<const Eigen::Matrix3Xd>& x,
                         const Eigen::Ref<const Eigen::Matrix3Xd>& v, Eigen::Ref<Eigen::Matrix3Xd> a,
@@ -47,6 +67,12 @@ void ChainSolver::elementTerms(const ChainModel& model, const ChainGeometry& geo
     m.h_f = J.leftCols<3>().transpose() * body.wrench;
     m.h_a = J.rightCols<3>().transpose() * body.wrench;
     m.s = k.s;
+    m.constrained = !(model.cable().elastic() && e < geometry.segments);
+    if (!m.constrained)
+    {
+      addStretch(model.cable(), geometry.elementLength(e), model.segment().mass, k, m);
+      continue;
+    }
     // (S6): s.(a_a - a_f) = c; at the winch |x_a - x_f| = L(t) gives c = (L'^2 + L L'' - |v_a - v_f|^2) / L.
     m.c = -(k.v_a - k.v_f).squaredNorm() / k.length;
     if (e == 0)
@@ -64,6 +90,20 @@ void ChainSweep::factor(const std::vector<ElementTerms>& terms)
     const ElementTerms& m = terms[static_cast<size_t>(e)];
     Factor& f = factors_[static_cast<size_t>(e)];
     const Eigen::Vector3d& s = m.s;
+    if (!m.constrained)
+    {
+      // (S21): no multiplier; A = M_aa + K_aft is regular (the stretch inertia along s).
+      f.kappa = 0.0;
+      f.A_inv = (m.M_aa + K_aft).inverse();
+      f.b.setZero();
+      f.b_t.setZero();
+      f.sigma = 1.0;
+      f.xi.setZero();
+      f.Phi = -f.A_inv * m.M_af;
+      f.K = m.M_ff + m.M_fa * f.Phi;
+      K_aft = f.K;
+      continue;
+    }
     // (S8)-(S9): the aft joint's inertia A = M_aa + K_aft, regularised along s by kappa s s^T (s.a_a is fixed
     // by the constraint, so only the multiplier changes: mu' = mu + kappa s.a_a).
     Eigen::Matrix3d A = m.M_aa + K_aft;
@@ -98,10 +138,10 @@ void ChainSweep::solve(const std::vector<ElementTerms>& terms, const Eigen::Vect
     const ElementTerms& m = terms[i];
     const Factor& f = factors_[i];
     const Eigen::Vector3d r0 = m.h_a - tau_aft;
-    const double eta_reg = (m.c - f.b_t.dot(r0)) / f.sigma;  // (S10)
-    eta_[i] = eta_reg - f.kappa * m.c;                       // (S11)
-    phi_[i] = f.A_inv * r0 + eta_reg * f.b;                  // (S12)
-    tau_[i] = m.M_fa * phi_[i] - m.h_f + eta_[i] * m.s;      // (S13)
+    const double eta_reg = m.constrained ? (m.c - f.b_t.dot(r0)) / f.sigma : 0.0;  // (S10); (S21): none
+    eta_[i] = eta_reg - f.kappa * m.c;                                             // (S11)
+    phi_[i] = f.A_inv * r0 + eta_reg * f.b;                                        // (S12)
+    tau_[i] = m.M_fa * phi_[i] - m.h_f + eta_[i] * m.s;                            // (S13)
     tau_aft = tau_[i];
   }
   if (multipliers)
@@ -114,7 +154,7 @@ void ChainSweep::solve(const std::vector<ElementTerms>& terms, const Eigen::Vect
     if (tensions)
       tensions->col(e) = f.K * a_f + tau_[i];
     if (multipliers)
-      (*multipliers)[i] = f.xi.dot(a_f) + eta_[i];  // (S11)
+      (*multipliers)[i] = terms[i].constrained ? f.xi.dot(a_f) + eta_[i] : -terms[i].tension;  // (S11)
     a.col(e) = f.Phi * a_f + phi_[i];
     a_f = a.col(e);
   }

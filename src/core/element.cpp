@@ -46,6 +46,7 @@ CableSegmentModel CableSegmentModel::fromParams(const CableParams& cable, const 
   m.displaced_mass = env.water_density * area * m.length;
   m.tangential_model = cable.tangential_drag_model;
   m.smoothing_speed = numerics.tangential_smoothing_speed;
+  m.stretches = cable.elastic();
   return m;
 }
 
@@ -154,7 +155,10 @@ void cableSegmentDynamics(const CableSegmentModel& seg, double t, const ElementK
   out.mass.setZero();
   // Walton-Polachek added mass acts on the normal acceleration of the centre (= CG).
   out.mass.topLeftCorner<3, 3>() = seg.mass * I3 + seg.added_mass * P;
-  out.mass.bottomRightCorner<3, 3>() = (seg.mass * seg.length * seg.length / 12.0) * I3;
+  // A stretching segment keeps its mass: its rotary inertia follows its length (with no correction for
+  // the stretch rate, d(I w)/dt = I s x (a_a - a_f)/d exactly; docs/solver.md §8).
+  const double d = seg.stretches ? k.length : seg.length;
+  out.mass.bottomRightCorner<3, 3>() = (seg.mass * d * d / 12.0) * I3;
 
   const WaveKinematics flow = env.flowOver(k.x_f, k.x_a, t);
   const VelocityForces vf =

@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -25,12 +26,13 @@ struct Balance
   Eigen::Vector3d u;
   Eigen::Vector3d T_aft;  // tension at the aft joint (0 below the vehicle)
   Eigen::Vector3d x_aft;
+  double length;  // [m] the element's (an elastic segment's stretched length)
 
   // Moment about the CG of everything on the element, given that the force balance fixes
   // T_fwd = T_aft - F: M - l s x (T_aft - gamma F). Also returns T_fwd.
   Eigen::Vector3d residual(const Eigen::Vector3d& s, Eigen::Vector3d* T_fwd = nullptr) const
   {
-    const double l = data.geometry.elementLength(element);
+    const double l = length;
     const ElementKinematics k = ElementKinematics::fromJoints(x_aft - l * s, x_aft, u, u);
     BodyDynamics body;
     model.elementDynamics(element, t, k, data.geometry, data, body, false);  // the steady tow clear of the seabed
@@ -114,7 +116,10 @@ bool isStable(const Balance& b, const Eigen::Vector3d& s)
 }
 
 EquilibriumResult shoot(const ChainModel& model, const ChainData& data, double t, const Eigen::Vector3d& tow_point_W,
-                        const Eigen::Vector3d& ship_velocity_W, const Eigen::Matrix3Xd& joints, int iterations);
+                        const Eigen::Vector3d& ship_velocity_W, const Eigen::Matrix3Xd& joints, int iterations,
+                        const std::vector<double>& lengths);
+std::vector<double> elementLengths(const ChainModel& model, const ChainData& data, const Eigen::Vector3d& tow_point_W,
+                                   const EquilibriumResult* stretched);
 }  // namespace
 
 EquilibriumResult steadyTowEquilibrium(const ChainModel& model, double t, const Eigen::Vector3d& tow_point_W,
@@ -130,21 +135,24 @@ EquilibriumResult steadyTowEquilibrium(const ChainModel& model, const ChainData&
     throw std::runtime_error("equilibrium: tow point and ship velocity must be finite");
   const int n = data.geometry.elementCount();
   // With a current profile each element's balance depends on its depth, which is known only once the
-  // shape hangs from the tow point: repeat the shooting with the depths of the previous pass until
-  // they settle. A uniform current needs one pass.
+  // shape hangs from the tow point, and an elastic segment's on its stretch, known once its tension is:
+  // repeat the shooting with the depths and stretches of the previous pass until they settle. A rigid
+  // cable in a uniform current needs one pass.
   const bool depth_dependent = !data.environment.current_profile.empty();
+  const bool repeat = depth_dependent || model.cable().elastic();
   Eigen::Matrix3Xd joints = tow_point_W.replicate(1, n);
   EquilibriumResult result;
-  for (int pass = 0; pass < (depth_dependent ? kMaxPasses : 1); ++pass)
+  for (int pass = 0; pass < (repeat ? kMaxPasses : 1); ++pass)
   {
-    result = shoot(model, data, t, tow_point_W, ship_velocity_W, joints, result.iterations);
+    const std::vector<double> lengths = elementLengths(model, data, tow_point_W, pass > 0 ? &result : nullptr);
+    result = shoot(model, data, t, tow_point_W, ship_velocity_W, joints, result.iterations, lengths);
     const double moved = (result.state.x - joints).cwiseAbs().maxCoeff();
     joints = result.state.x;
     if (moved < 1e-7 * (1.0 + data.geometry.totalLength()))
       return result;
   }
-  if (depth_dependent)
-    throw std::runtime_error("equilibrium: the shape did not settle in the current profile after " +
+  if (repeat)
+    throw std::runtime_error("equilibrium: the shape did not settle in the current profile or the stretch after " +
                              std::to_string(kMaxPasses) + " passes");
   return result;
 }
@@ -165,8 +173,30 @@ bool firstStable(const Balance& b, const Eigen::Vector3d (&candidates)[N], doubl
   return false;
 }
 
+// The element lengths: the geometry's; for an elastic cable with a solution `stretched` at hand, each
+// segment stretched by its tension there, N = -s.(T_fwd + T_aft)/2 (its static balance, docs/solver.md §8).
+std::vector<double> elementLengths(const ChainModel& model, const ChainData& data, const Eigen::Vector3d& tow_point_W,
+                                   const EquilibriumResult* stretched)
+{
+  const int n = data.geometry.elementCount();
+  std::vector<double> lengths(static_cast<size_t>(n));
+  const CableParams& cable = model.cable();
+  for (int e = 0; e < n; ++e)
+  {
+    double& length = lengths[static_cast<size_t>(e)] = data.geometry.elementLength(e);
+    if (!stretched || !cable.elastic() || e >= data.geometry.segments)
+      continue;
+    const Eigen::Matrix3Xd& x = stretched->state.x;
+    const Eigen::Vector3d s = (x.col(e) - (e == 0 ? tow_point_W : Eigen::Vector3d(x.col(e - 1)))).normalized();
+    const Eigen::Vector3d aft = stretched->tensions.col(e + 1);
+    length *= 1.0 + std::max(-0.5 * s.dot(stretched->tensions.col(e) + aft), 0.0) / *cable.axial_stiffness;
+  }
+  return lengths;
+}
+
 EquilibriumResult shoot(const ChainModel& model, const ChainData& data, double t, const Eigen::Vector3d& tow_point_W,
-                        const Eigen::Vector3d& ship_velocity_W, const Eigen::Matrix3Xd& joints, int iterations)
+                        const Eigen::Vector3d& ship_velocity_W, const Eigen::Matrix3Xd& joints, int iterations,
+                        const std::vector<double>& lengths)
 {
   const int n = data.geometry.elementCount();
   EquilibriumResult result;
@@ -181,7 +211,7 @@ EquilibriumResult shoot(const ChainModel& model, const ChainData& data, double t
   Eigen::Vector3d T_aft = Eigen::Vector3d::Zero();
   for (int e = n - 1; e >= 0; --e)
   {
-    const Balance b{ model, data, e, t, ship_velocity_W, T_aft, joints.col(e) };
+    const Balance b{ model, data, e, t, ship_velocity_W, T_aft, joints.col(e), lengths[static_cast<size_t>(e)] };
     Eigen::Vector3d F_guess;
     b.residual(guess, &F_guess);
     const double scale = 1.0 + data.geometry.elementLength(e) * (T_aft.norm() + F_guess.norm());
@@ -208,13 +238,12 @@ EquilibriumResult shoot(const ChainModel& model, const ChainData& data, double t
     T_aft = T_fwd;
     guess = s;
   }
-  // Hang the shape from the tow point.
   result.state.x.resize(3, n);
   result.state.v.resize(3, n);
   Eigen::Vector3d p = tow_point_W;
   for (int e = 0; e < n; ++e)
   {
-    p += data.geometry.elementLength(e) * axes.col(e);
+    p += lengths[static_cast<size_t>(e)] * axes.col(e);
     result.state.x.col(e) = p;
     result.state.v.col(e) = ship_velocity_W;
   }

@@ -24,6 +24,7 @@ void ImplicitStepper::linearise(const ChainModel& model, const ChainGeometry& ge
     a_joints << (e == 0 ? ship.a_W : Eigen::Vector3d(a.col(e - 1))), a.col(e);
     elementJacobian(model, e, t, k, geometry, data, multipliers[i], jacobians_[i], &a_joints);
     stage_[i].s = terms[i].s;
+    stage_[i].constrained = terms[i].constrained;
   }
   winch_d_length_ = winch_d_length;
   winch_d_rate_ = winch_d_rate;

@@ -37,7 +37,12 @@ const ParamTable<CableParams>& cableParams()
           .optionalNumber("safe_working_load", &C::safe_working_load, "N", 0.0, 1e9, kOpen, "unset",
                           "the node's diagnostics WARN while a tension exceeds it")
           .optionalNumber("breaking_load", &C::breaking_load, "N", 0.0, 1e9, kOpen, "unset",
-                          "≥ safe_working_load; the node's diagnostics report an ERROR while a tension exceeds it");
+                          "≥ safe_working_load; the node's diagnostics report an ERROR while a tension exceeds it")
+          .optionalNumber("axial_stiffness", &C::axial_stiffness, "N", 0.0, 1e11, kOpen, "unset",
+                          "EA: set, the cable stretches and carries tension only, T = max(0, EA ε + c ε̇); "
+                          "unset, the rigid chain (the report's)")
+          .number("axial_damping", &C::axial_damping, "N s", 0.0, 1e10, kClosed,
+                  "c of the elastic cable, the axial force per unit strain rate (needs axial_stiffness)");
   return table;
 }
 

@@ -130,6 +130,8 @@ void validate(const CableParams& c, const std::string& p)
   if (c.safe_working_load && c.breaking_load)
     requireInRange(p + ".breaking_load", *c.breaking_load, *c.safe_working_load, 1e9,
                    "[N] (at least safe_working_load)");
+  if (!c.elastic() && c.axial_damping != 0.0)
+    requireInRange(p + ".axial_damping", c.axial_damping, 0.0, 0.0, "[N s] (0 unless axial_stiffness is set)");
 }
 
 void validate(const EndElementParams& e, const std::string& p)
@@ -157,6 +159,8 @@ void validate(const WinchParams& w, const CableParams& c, const std::string& p)
   if (w.enabled)
     requireInRange(root + "cable.length", c.length, w.min_length, w.max_length,
                    "[m] (within winch.min_length .. winch.max_length)");
+  if (w.enabled && c.elastic())
+    throw std::invalid_argument(p + ".enabled: the winch needs the rigid cable (cable.axial_stiffness unset)");
 }
 
 }  // namespace tow_sim

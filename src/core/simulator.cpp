@@ -59,17 +59,38 @@ ChainState straightChain(const ChainModel& model, const Eigen::Vector3d& tow_poi
 }
 
 double maxRelativeLengthError(const ChainGeometry& geometry, const Eigen::Vector3d& tow_point_W,
-                              const Eigen::Ref<const Eigen::Matrix3Xd>& x)
+                              const Eigen::Ref<const Eigen::Matrix3Xd>& x, int first_element)
 {
   double worst = 0.0;
   Eigen::Vector3d x_f = tow_point_W;
   for (int e = 0; e < geometry.elementCount(); ++e)
   {
     const double d = geometry.elementLength(e);
-    worst = std::max(worst, std::abs((x.col(e) - x_f).norm() / d - 1.0));
+    if (e >= first_element)
+      worst = std::max(worst, std::abs((x.col(e) - x_f).norm() / d - 1.0));
     x_f = x.col(e);
   }
   return worst;
+}
+
+void removeStretchRates(const ShipEndState& tow_point, int segments, ChainState& state)
+{
+  Eigen::Vector3d x_f = tow_point.p_W, v_f = tow_point.v_W;
+  for (int e = 0; e < segments; ++e)
+  {
+    const Eigen::Vector3d s = (state.x.col(e) - x_f).normalized();
+    state.v.col(e) -= s.dot(state.v.col(e) - v_f) * s;
+    x_f = state.x.col(e);
+    v_f = state.v.col(e);
+  }
+}
+
+std::vector<double> segmentStrains(const ChainGeometry& geometry, const Eigen::Matrix3Xd& joints)
+{
+  std::vector<double> strain(static_cast<size_t>(geometry.segments));
+  for (int e = 0; e < geometry.segments; ++e)
+    strain[static_cast<size_t>(e)] = (joints.col(e + 1) - joints.col(e)).norm() / geometry.elementLength(e) - 1.0;
+  return strain;
 }
 
 Diversion lateralDiversion(const Eigen::Vector3d& p_W, const Eigen::Vector3d& v_W, const ShipEndState& ship,
@@ -308,6 +329,9 @@ void Simulator::reset(double t, const ChainState& state)
   project(t_);
   refreshOutputs();
   dt_ = std::min(model_->numerics().max_step, 0.01);
+  taut_.clear();
+  StepReport ignored;
+  countSnaps(ignored);  // the taut segments of the restart
 }
 
 void Simulator::derivative(double t, const StateVector& y, StateVector& dydt) const
@@ -361,8 +385,16 @@ void Simulator::project(double t)
   const ShipEndState ship = ship_(t);
   Eigen::Vector3d x_f = ship.p_W;
   Eigen::Vector3d v_f = ship.v_W;
+  // An elastic cable's segments stretch: only its end body has a length to keep.
+  const int first = model_->cable().elastic() ? data_.geometry.segments : 0;
   for (int e = 0; e < L.joints; ++e)
   {
+    if (e < first)
+    {
+      x_f = x.col(e);
+      v_f = v.col(e);
+      continue;
+    }
     const Eigen::Vector3d s = (x.col(e) - x_f).normalized();
     x.col(e) = x_f + data_.geometry.elementLength(e) * s;
     // Relative velocity along the element: none, but the winch's rate on the first segment.
@@ -375,7 +407,26 @@ void Simulator::project(double t)
 
 double Simulator::lengthError() const
 {
-  return maxRelativeLengthError(data_.geometry, ship_(t_).p_W, layout().positions(y_));
+  const int first = model_->cable().elastic() ? data_.geometry.segments : 0;
+  return maxRelativeLengthError(data_.geometry, ship_(t_).p_W, layout().positions(y_), first);
+}
+
+void Simulator::countSnaps(StepReport& report)
+{
+  if (!model_->cable().elastic())
+    return;
+  const size_t n = static_cast<size_t>(data_.geometry.segments);
+  const bool first = taut_.size() != n;  // after a reset: no step to compare with
+  taut_.resize(n);
+  for (size_t e = 0; e < n; ++e)
+  {
+    const bool taut = multipliers_[e] < 0.0;
+    if (!first && taut && !taut_[e])
+      ++report.snaps;
+    taut_[e] = taut;
+  }
+  for (double eps : segmentStrains(data_.geometry, jointPositions()))
+    report.max_strain = std::max(report.max_strain, eps);
 }
 
 double Simulator::largestRelativeSpeed(double t) const
@@ -463,6 +514,7 @@ void Simulator::stepOnce(double t_end, double winch_step, StepReport& report)
   refreshOutputs();
   report.tension_ship.add(tensions_.col(0).norm());
   report.tension_vehicle.add(tensions_.col(tensions_.cols() - 1).norm());
+  countSnaps(report);
 }
 
 ElementKinematics Simulator::elementKinematics(int e) const

@@ -61,6 +61,7 @@ TowSnapshot interpolate(const TowSnapshot& a, const TowSnapshot& b, double t)
   const double w = span > 0.0 ? std::clamp((t - a.t) / span, 0.0, 1.0) : 1.0;
   TowSnapshot out = w < 0.5 ? a : b;  // the discrete outputs, and the whole across a change of layout
   out.max_length_error = std::max(a.max_length_error, b.max_length_error);
+  out.max_strain = std::max(a.max_strain, b.max_strain);
   out.tension_ship_range = b.tension_ship_range;  // the extremes of the interval that ends at b
   out.tension_vehicle_range = b.tension_vehicle_range;
   if (a.joints.cols() != b.joints.cols() || a.tensions.cols() != b.tensions.cols())

@@ -93,6 +93,10 @@ ChainState TowRun::initialState(double t, std::string* warning) const
   // The initial shapes know nothing of the seabed: joints below it are raised onto it.
   if (model_->seabed())
     liftAboveSeabed(*model_->seabed(), state);
+  // An elastic cable starts with no segment stretching (else a heaving tow point would start it with a jerk
+  // of its axial damping); the projection does this for rigid links.
+  if (model_->cable().elastic())
+    removeStretchRates(tow, geometry.segments, state);
   return state;
 }
 
@@ -127,6 +131,8 @@ std::string TowRun::start(double t)
     sim_.setWinchCommand(due->payout_rate);
   attitude_.reset();
   max_length_error_ = 0.0;
+  snap_count_ = 0;
+  max_strain_ = -std::numeric_limits<double>::infinity();
   tension_ship_range_ = tension_vehicle_range_ = ValueRange();
   started_ = true;
   return warning;
@@ -173,6 +179,10 @@ StepReport TowRun::advanceTo(double t)
     total.rejected += r.rejected;
     total.max_length_error = std::max(total.max_length_error, r.max_length_error);
     max_length_error_ = std::max(max_length_error_, r.max_length_error);
+    total.snaps += r.snaps;
+    total.max_strain = std::max(total.max_strain, r.max_strain);
+    snap_count_ += r.snaps;
+    max_strain_ = std::max(max_strain_, r.max_strain);
     tension_ship_range_.add(r.tension_ship);
     tension_vehicle_range_.add(r.tension_vehicle);
   };
@@ -216,6 +226,22 @@ void TowRun::applySetpoint(const AutopilotSetpoint& sp)
     autopilot_->setSetpoint(sp.value);
 }
 
+void TowRun::elasticOutputs(TowSnapshot& s)
+{
+  if (model_->cable().elastic())
+  {
+    // A segment is slack when it carries no tension (the end body keeps the rigid rule).
+    const std::vector<double>& mu = sim_.axialMultipliers();
+    for (int e = 0; e < s.segments; ++e)
+      s.slack[static_cast<size_t>(e)] = !(mu[static_cast<size_t>(e)] < 0.0);
+    for (double eps : segmentStrains(sim_.geometry(), s.joints))
+      max_strain_ = std::max(max_strain_, eps);
+  }
+  s.snap_count = snap_count_;
+  s.max_strain = model_->cable().elastic() ? max_strain_ : 0.0;
+  max_strain_ = -std::numeric_limits<double>::infinity();
+}
+
 TowSnapshot TowRun::snapshot()
 {
   if (!started_)
@@ -230,6 +256,7 @@ TowSnapshot TowRun::snapshot()
   if (!s.joints.allFinite() || !s.tensions.allFinite())
     throw std::runtime_error("non-finite state at t = " + std::to_string(s.t) + " s");
   s.slack = slackFlags(s.joints, s.tensions);
+  elasticOutputs(s);
   s.tension_ship = s.tensions.col(0).norm();
   s.tension_vehicle = s.tensions.col(s.segments).norm();
   s.cable_length = sim_.cableLength();

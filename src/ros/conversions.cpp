@@ -131,6 +131,8 @@ tow_sim::CableState toCableState(const TowSnapshot& s, const std_msgs::Header& h
   state.diversion_rate = s.diversion.rate;
   state.cable_length = s.cable_length;
   state.payout_rate = s.payout_rate;
+  state.snap_count = static_cast<uint32_t>(std::min<long>(s.snap_count, 4294967295L));
+  state.max_strain = s.max_strain;
   state.seabed_present = s.seabed_present;
   state.seabed_contact.assign(s.joint_contact.begin(), s.joint_contact.end());
   if (s.seabed_present)

@@ -14,7 +14,7 @@ const char* timeseriesHeader()
   return "t,ship_x,ship_y,ship_z,ship_speed,vehicle_x,vehicle_y,vehicle_z,vehicle_roll,vehicle_pitch,vehicle_yaw,depth,"
          "layback,diversion,diversion_rate,tension_ship,tension_vehicle,rudder,elevator,thrust,max_length_error,"
          "cable_length,payout_rate,vehicle_altitude,seabed_contacts,depth_setpoint,tension_ship_min,tension_ship_max,"
-         "tension_vehicle_min,tension_vehicle_max";
+         "tension_vehicle_min,tension_vehicle_max,snap_count,max_strain";
 }
 
 const char* shapesHeader()
@@ -38,7 +38,7 @@ std::string timeseriesRow(const TowSnapshot& s)
   if (s.depth_setpoint)
     row << *s.depth_setpoint;  // blank without an autopilot
   row << ',' << s.tension_ship_range.min << ',' << s.tension_ship_range.max << ',' << s.tension_vehicle_range.min << ','
-      << s.tension_vehicle_range.max;
+      << s.tension_vehicle_range.max << ',' << s.snap_count << ',' << s.max_strain;
   return row.str();
 }
 

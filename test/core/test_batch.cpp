@@ -75,11 +75,11 @@ const std::string& outputRoot()
 }
 
 // Every scenario in scenarios/ (the bathymetry files there are grids, not scenarios).
-const char* const kShippedScenarios[] = { "report_elevator_step", "turn_180",
-                                          "speed_change",         "zigzag",
-                                          "winch_payout",         "seabed_shoal",
-                                          "sheared_current",      "autopilot_depth_turn",
-                                          "autopilot_terrain",    "head_seas" };
+const char* const kShippedScenarios[] = {
+  "report_elevator_step", "turn_180",     "speed_change",    "zigzag",
+  "winch_payout",         "seabed_shoal", "sheared_current", "autopilot_depth_turn",
+  "autopilot_terrain",    "head_seas",    "heave_snap"
+};
 
 // Runs a shipped scenario once per test process (whichever test asks first), in this process through the
 // batch library (runScenario, what tow_sim_batch calls), writing its CSV files into the output folder for
@@ -157,7 +157,9 @@ TEST(Batch, EveryScenarioRunsAndWritesTheDocumentedColumns)
                                              "tension_ship_min",
                                              "tension_ship_max",
                                              "tension_vehicle_min",
-                                             "tension_vehicle_max" };
+                                             "tension_vehicle_max",
+                                             "snap_count",
+                                             "max_strain" };
   for (const std::string name : kShippedScenarios)
   {
     ASSERT_FALSE(outputRoot().empty()) << "cannot make a temporary folder";
@@ -219,7 +221,9 @@ TEST(Batch, EveryScenarioRunsAndWritesTheDocumentedColumns)
       EXPECT_GT(fileSize(out + "/" + png), 5000) << name << " " << png;
     EXPECT_EQ(fileSize(out + "/winch.png") > 5000, sc.config.winch.enabled) << name;
     EXPECT_EQ(fileSize(out + "/seabed.png") > 5000, sc.config.seabed.type != SeabedParams::Type::kNone) << name;
-    EXPECT_EQ(fileSize(out + "/waves.png") > 5000, sc.config.environment.waves.type != WaveParams::Type::kNone) << name;
+    const bool heaves = sc.config.environment.waves.type != WaveParams::Type::kNone || !sc.motion_file.empty();
+    EXPECT_EQ(fileSize(out + "/waves.png") > 5000, heaves) << name;
+    EXPECT_EQ(fileSize(out + "/snaps.png") > 5000, sc.config.cable.elastic()) << name;
   }
 }
 

@@ -25,7 +25,8 @@ struct ElementJacobian
 //     v_f, v_a;
 //   every element: the geometric stiffness of its tension T = max(-mu, 0) turning with the axis,
 //     -T/d (I - s s^T) on the relative displacement of its joints (compression is left out: it would
-//     soften N).
+//     soften N);
+//   elastic segments: the axial stiffness and damping of their tension (addAxialStiffness).
 // Left out (a W-method keeps its order with any matrix; only the step it can take changes): on cable
 // segments the drag's and the weight's dependence on the direction, the current profile's on depth and the
 // waves' dependence on position (and their acceleration's load);
@@ -39,5 +40,8 @@ void elementJacobian(const ChainModel& model, int e, double t, const ElementKine
 
 // The geometric stiffness term alone (added by elementJacobian).
 void addGeometricStiffness(const ElementKinematics& k, double mu, ElementJacobian& out);
+// An elastic segment of rest length rest_length [m]: its tension's derivatives in the joints' positions and
+// velocities along the axis (EA/d0, c/d0), while it is taut (added by elementJacobian).
+void addAxialStiffness(const CableParams& cable, double rest_length, const ElementKinematics& k, ElementJacobian& out);
 
 }  // namespace tow_sim

@@ -28,10 +28,14 @@ struct ElementTerms
   Eigen::Vector3d h_f, h_a;                // projected loads (S5) [N]
   Eigen::Vector3d s;                       // the element's axis
   double c = 0.0;                          // [m/s^2] right-hand side of the length constraint (S6)
+  // An elastic segment has no length constraint: its axial force is a load, already in h (docs/solver.md
+  // §8), and mu = -tension is known.
+  bool constrained = true;
+  double tension = 0.0;  // [N] the elastic segment's axial tension (unconstrained only)
 };
 
 // The backward and forward sweeps over a chain of element equations whose end body's tail is free
-// (T = 0 aft of it): (S7)-(S14).
+// (T = 0 aft of it): (S7)-(S14), and for unconstrained (elastic) elements (S20)-(S21).
 class ChainSweep
 {
 public:

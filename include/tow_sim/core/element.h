@@ -51,6 +51,7 @@ struct CableSegmentModel
   double displaced_mass = 0.0;  // [kg] rho (pi D^2/4) d: the Froude-Krylov force of the waves' acceleration
   TangentialDragModel tangential_model = TangentialDragModel::kPode;
   double smoothing_speed = 0.01;  // [m/s] width of the smooth sign of u.s (Pode model)
+  bool stretches = false;         // elastic cable: the rotary inertia m d^2/12 at the actual length d
 
   static CableSegmentModel fromParams(const CableParams& cable, const Environment& env, const NumericsParams& numerics);
 };

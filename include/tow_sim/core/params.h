@@ -81,6 +81,18 @@ struct CableParams
   TangentialDragModel tangential_drag_model = TangentialDragModel::kPode;
   std::optional<double> safe_working_load;  // [N] the node warns above it (unset: no limit), > 0 .. 1e9
   std::optional<double> breaking_load;      // [N] the node reports an error above it, >= safe_working_load .. 1e9
+  // The elastic, tension-only cable (physics.md §9): unset, the rigid inextensible chain (the report's).
+  std::optional<double> axial_stiffness;  // [N] EA, > 0 .. 1e11
+  double axial_damping = 0.0;             // [N s] c, the axial force per unit strain rate, >= 0 .. 1e10
+
+  bool elastic() const { return axial_stiffness.has_value(); }
+  // [N] the tension of a segment of rest length rest [m] at length length [m] stretching at rate [m/s]:
+  // T = max(0, EA eps + c deps/dt), eps = length / rest - 1 (elastic cables only).
+  double axialTension(double length, double rate, double rest) const
+  {
+    const double t = *axial_stiffness * (length / rest - 1.0) + axial_damping * rate / rest;
+    return t > 0.0 ? t : 0.0;
+  }
 
   double segmentLength() const { return length / segments; }
   double c1Value(const Environment& env) const;  // [N s^2/m^3]

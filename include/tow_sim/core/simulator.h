@@ -38,9 +38,17 @@ ChainState straightChain(const ChainGeometry& geometry, const Eigen::Vector3d& t
 ChainState straightChain(const ChainModel& model, const Eigen::Vector3d& tow_point_W,
                          const Eigen::Vector3d& direction_W, const Eigen::Vector3d& velocity_W);
 
-// Largest |(|x_{l+1} - x_l|) / d_l - 1| over the elements: the relative length error.
+// Largest |(|x_{l+1} - x_l|) / d_l - 1| over the elements from first_element on: the relative length error
+// (an elastic cable's segments stretch: only its end body has a length to keep).
 double maxRelativeLengthError(const ChainGeometry& geometry, const Eigen::Vector3d& tow_point_W,
-                              const Eigen::Ref<const Eigen::Matrix3Xd>& x);
+                              const Eigen::Ref<const Eigen::Matrix3Xd>& x, int first_element = 0);
+
+// Removes from the first `segments` joints' velocities, from the tow point aft, each segment's stretch rate
+// (the relative velocity along it), as the projection does for rigid links.
+void removeStretchRates(const ShipEndState& tow_point, int segments, ChainState& state);
+
+// The strain eps = |x_{l+1} - x_l| / d_l - 1 of each cable segment (nu values), joints x_1 .. x_{nu+2}.
+std::vector<double> segmentStrains(const ChainGeometry& geometry, const Eigen::Matrix3Xd& joints);
 
 // The integrator's state vector: joint positions x_2 .. x_{nu+2} (3 x (nu+1)), their velocities, the cable
 // out [m] and the payout rate [m/s], in that order. Named views instead of index arithmetic.
@@ -101,6 +109,9 @@ struct StepReport
   double max_length_error = 0.0;  // [-] largest relative length error left by a step, before projection
   ValueRange tension_ship;        // [N] |T_1| at the end of each accepted step
   ValueRange tension_vehicle;     // [N] |T_{nu+1}| likewise
+  int snaps = 0;                  // elastic cable: segments that went from slack (T = 0) to taut in a step
+  // [-] elastic cable: the largest segment strain at the end of a step (-inf: none)
+  double max_strain = -std::numeric_limits<double>::infinity();
 };
 
 class Simulator
@@ -168,8 +179,11 @@ public:
   const Eigen::Matrix3Xd& tensions() const { return tensions_; }
   // Joint accelerations x_2 .. x_{nu+2} at the current state [m/s^2].
   const Eigen::Matrix3Xd& accelerations() const { return accelerations_; }
-  // Current relative length error (after projection).
+  // Current relative length error (after projection): the end body's alone for an elastic cable.
   double lengthError() const;
+  // Each element's axial multiplier mu at the current state [N], compression positive: an elastic
+  // segment's is minus its tension (0 when slack).
+  const std::vector<double>& axialMultipliers() const { return multipliers_; }
   // Kinematics of element e (0 .. nu) at the current state; e = nu is the vehicle.
   ElementKinematics elementKinematics(int e) const;
 
@@ -210,6 +224,8 @@ private:
   StateVector dydt_;
   Eigen::Matrix3Xd tensions_, accelerations_;
   std::vector<double> multipliers_;  // each element's axial multiplier at the current state [N]
+  std::vector<char> taut_;           // elastic cable: each segment taut at the last accepted step
+  void countSnaps(StepReport& report);
   ImplicitStepper implicit_;
   const RosenbrockTableau* tableau_ = nullptr;  // the implicit steppers' method
   std::vector<StateVector> stage_k_;            // the implicit step's workspace

@@ -54,15 +54,19 @@ struct TowSnapshot
   int segments = 0;           // nu (the winch changes it)
   Eigen::Matrix3Xd joints;    // [m] x_1 .. x_{nu+2}, tow point first
   Eigen::Matrix3Xd tensions;  // [N] T_1 .. T_{nu+1}, the pull toward the ship on each element's forward joint
-  std::vector<bool> slack;    // per T_lambda: the rigid link carries compression
+  std::vector<bool> slack;    // per element: a rigid link carries compression; an elastic segment no tension
   double tension_ship = 0.0, tension_vehicle = 0.0;  // [N] |T_1|, |T_{nu+1}|
   double cable_length = 0.0, payout_rate = 0.0;      // [m], [m/s]
   // [N] the smallest and largest tension at the ship and at the vehicle over the steps since the previous
   // snapshot and at this one (a peak shorter than an output interval shows here)
   ValueRange tension_ship_range, tension_vehicle_range;
   double max_length_error = 0.0;  // [-] largest relative length error a step left before projection, since
-                                  // the previous snapshot
-  VehicleOutputs vehicle;         // at the CG, in the dynamics' zero-roll frame; fin angles and loads
+                                  // the previous snapshot (an elastic cable: its end body's)
+  // Elastic cable (zero for the rigid one): segments gone from slack to taut since the run started, and the
+  // largest segment strain over the steps since the previous snapshot and at this one.
+  long snap_count = 0;
+  double max_strain = 0.0;  // [-]
+  VehicleOutputs vehicle;   // at the CG, in the dynamics' zero-roll frame; fin angles and loads
   Eigen::Quaterniond attitude = Eigen::Quaterniond::Identity();  // as published (AttitudeHold near the vertical)
   double pitch = 0.0, yaw = 0.0;  // [rad] REP-103 of `attitude`: pitch positive nose down, yaw from +x
   double depth = 0.0;             // [m] of the CG
@@ -133,6 +137,7 @@ private:
   void applySetpoint(const AutopilotSetpoint& setpoint);
   long firstTickFrom(double t) const;  // the autopilot's first tick at or after t [s]
   VehicleOutputs vehicleOutputs() const;
+  void elasticOutputs(TowSnapshot& s);  // slack flags, snap count and strain of an elastic cable
 
   SimulationConfig config_;
   std::shared_ptr<const Vehicle> vehicle_;
@@ -148,6 +153,8 @@ private:
   size_t next_setpoint_ = 0;
   long ticks_ = 0;
   double max_length_error_ = 0.0;
+  long snap_count_ = 0;                                    // since start()
+  double max_strain_ = 0.0;                                // since the last snapshot (-inf: none yet)
   ValueRange tension_ship_range_, tension_vehicle_range_;  // since the last snapshot
   AttitudeHold attitude_;
 };
