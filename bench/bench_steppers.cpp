@@ -5,7 +5,7 @@
 //   deep     6000 m of 0.04 m, 6 kg/m cable at 1.5 m/s (steady), nu = 1000.
 // Steppers: dopri5 (default tolerances), rk4 at its largest stable fixed step (from 2.5 / omega_max, the
 // zig-zag mode omega_max^2 = 12 T / (m_eff d^2) at the tow point's tension, shortened until 60 s of the run
-// go through), implicit (default tolerances).
+// go through), implicit (default tolerances); and implicit on an elastic cable (EA 1e8 N, c = 0.01 s EA).
 // Counter `realtime`: simulated seconds per wall second. Each iteration advances `chunk` simulated
 // seconds; the first 2 s (start-up) are outside the timing.
 #include <benchmark/benchmark.h>
@@ -88,10 +88,15 @@ double rk4Step(const SimulationConfig& c, double tension)
 }
 
 void BM_Tow(benchmark::State& state, Path path, bool deep, StepperType stepper, int segments, double chunk,
-            ImplicitMethod method = NumericsParams().implicit_method)
+            ImplicitMethod method, double axial_stiffness)
 {
   SimulationConfig c = config(segments, deep);
   c.numerics.implicit_method = method;
+  if (axial_stiffness > 0.0)  // the elastic cable, with an axial damping time of 0.01 s
+  {
+    c.cable.axial_stiffness = axial_stiffness;
+    c.cable.axial_damping = 0.01 * axial_stiffness;
+  }
   const double speed = deep ? 1.5 : 2.0;
   const double duration = 12.0 + chunk * 6.0;  // every iteration (at most 5) and a margin
   if (stepper == StepperType::kRk4)
@@ -164,13 +169,23 @@ void registerAll()
         const double chunk = slow ? 1.0 : 10.0;
         const std::string label =
             std::string(path == Path::kTurn ? "turn" : "steady") + "/" + v.label + "/nu:" + std::to_string(segments);
-        benchmark::RegisterBenchmark(label.c_str(), BM_Tow, path, false, v.stepper, segments, chunk, v.method)
+        benchmark::RegisterBenchmark(label.c_str(), BM_Tow, path, false, v.stepper, segments, chunk, v.method, 0.0)
             ->Iterations(slow ? 3 : 5)
             ->Unit(benchmark::kMillisecond);
       }
+  // The elastic cable (steel-like EA 1e8 N) with the implicit stepper, beside the rigid one above.
+  for (Path path : { Path::kStraight, Path::kTurn })
+    for (int segments : { 50, 100, 200, 1000 })
+      benchmark::RegisterBenchmark((std::string(path == Path::kTurn ? "turn" : "steady") +
+                                    "/implicit_elastic_ea1e8/nu:" + std::to_string(segments))
+                                       .c_str(),
+                                   BM_Tow, path, false, StepperType::kImplicit, segments, 10.0,
+                                   ImplicitMethod::kRos34pw2, 1.0e8)
+          ->Iterations(5)
+          ->Unit(benchmark::kMillisecond);
   for (const Variant& v : kVariants)
     benchmark::RegisterBenchmark((std::string("deep6km/") + v.label + "/nu:1000").c_str(), BM_Tow, Path::kStraight,
-                                 true, v.stepper, 1000, 10.0, v.method)
+                                 true, v.stepper, 1000, 10.0, v.method, 0.0)
         ->Iterations(3)
         ->Unit(benchmark::kMillisecond);
 }
