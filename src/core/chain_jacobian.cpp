@@ -39,6 +39,9 @@ void segmentJacobian(const ChainModel& model, int e, double t, const ElementKine
     dw_dv.bottomRightCorner<3, 3>() += dm;
   }
   Matrix6d dw_dx = Matrix6d::Zero();
+  // An elastic segment takes the contact at its aft joint on that joint itself (ChainSolver).
+  const bool elastic = model.cable().elastic();
+  Eigen::Matrix3d contact_p = Eigen::Matrix3d::Zero(), contact_v = Eigen::Matrix3d::Zero();
   if (const Seabed* bottom = model.seabed())
   {
     const Eigen::Vector3d x_G = k.pointAt(0.5);
@@ -48,6 +51,12 @@ void segmentJacobian(const ChainModel& model, int e, double t, const ElementKine
                            const Eigen::Vector3d p = k.pointAt(eta);
                            Eigen::Matrix3d df_dp, df_dv;
                            bottom->contactJacobian(p, k.velocityAt(eta), stiffness, damping, df_dp, df_dv);
+                           if (elastic)
+                           {
+                             contact_p += df_dp;
+                             contact_v += df_dv;
+                             return;
+                           }
                            Matrix63d arm;  // a force at p as a wrench at the CG
                            arm << I3, skew(p - x_G);
                            Matrix36d at;  // p and its velocity from the joints'
@@ -59,6 +68,8 @@ void segmentJacobian(const ChainModel& model, int e, double t, const ElementKine
   const Matrix6d J = jointMap(k.s, k.length, 0.5);
   out.dh_dv = J.transpose() * dw_dv;
   out.dh_dx = J.transpose() * dw_dx;
+  out.dh_dv.bottomRightCorner<3, 3>() += contact_v;
+  out.dh_dx.bottomRightCorner<3, 3>() += contact_p;
 }
 
 // The end body: central differences of its projected loads over x_f, x_a, v_f, v_a.

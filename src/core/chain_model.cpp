@@ -91,6 +91,16 @@ void ChainModel::addContact(int e, const ElementKinematics& k, const ChainGeomet
                  });
 }
 
+Eigen::Vector3d ChainModel::segmentContactForce(int e, const ElementKinematics& k, const ChainGeometry& geometry) const
+{
+  Eigen::Vector3d f = Eigen::Vector3d::Zero();
+  if (seabed() && e < geometry.segments)
+    forEachContact(e, geometry,
+                   [&](double eta, double stiffness, double damping)
+                   { f += seabed()->contactForce(k.pointAt(eta), k.velocityAt(eta), stiffness, damping); });
+  return f;
+}
+
 void setCurrent(ChainData& data, const Eigen::Vector3d& current_W)
 {
   Environment candidate = data.environment;

@@ -50,7 +50,8 @@ void ChainSolver::elementTerms(const ChainModel& model, const ChainGeometry& geo
     const Eigen::Vector3d x_f = e == 0 ? ship.p_W : Eigen::Vector3d(x.col(e - 1));
     const Eigen::Vector3d v_f = e == 0 ? ship.v_W : Eigen::Vector3d(v.col(e - 1));
     const ElementKinematics k = ElementKinematics::fromJoints(x_f, x.col(e), v_f, v.col(e));
-    model.elementDynamics(e, t, k, geometry, data, body);
+    const bool elastic = model.cable().elastic() && e < geometry.segments;
+    model.elementDynamics(e, t, k, geometry, data, body, !elastic);
     // While the winch changes the first segment's length L, its axis s = (x_a - x_f)/L turns with
     // dw/dt = s x (a_a - a_f)/L - 2 (L'/L) w: the known part goes to the loads.
     if (e == 0 && geometry.first_rate != 0.0)
@@ -67,10 +68,12 @@ void ChainSolver::elementTerms(const ChainModel& model, const ChainGeometry& geo
     m.h_f = J.leftCols<3>().transpose() * body.wrench;
     m.h_a = J.rightCols<3>().transpose() * body.wrench;
     m.s = k.s;
-    m.constrained = !(model.cable().elastic() && e < geometry.segments);
-    if (!m.constrained)
+    m.constrained = !elastic;
+    if (elastic)
     {
-      addStretch(model.cable(), geometry.elementLength(e), model.segment().mass, k, m);
+      addStretch(model.cable(), geometry.elementLength(e),
+                 (e == 0 ? model.firstSegment(geometry) : model.segment()).mass, k, m);
+      m.h_a += model.segmentContactForce(e, k, geometry);  // at its aft joint itself
       continue;
     }
     // (S6): s.(a_a - a_f) = c; at the winch |x_a - x_f| = L(t) gives c = (L'^2 + L L'' - |v_a - v_f|^2) / L.

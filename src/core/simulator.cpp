@@ -329,7 +329,7 @@ void Simulator::reset(double t, const ChainState& state)
   project(t_);
   refreshOutputs();
   dt_ = std::min(model_->numerics().max_step, 0.01);
-  taut_.clear();
+  slack_.clear();
   StepReport ignored;
   countSnaps(ignored);  // the taut segments of the restart
 }
@@ -415,18 +415,27 @@ void Simulator::countSnaps(StepReport& report)
 {
   if (!model_->cable().elastic())
     return;
+  // A segment goes slack when it carries no tension at or below its rest length (not when its damping
+  // alone zeroes the tension of a still stretched segment) and snaps when it carries tension again. A
+  // restart at the rest lengths (a straight line) is not slack.
   const size_t n = static_cast<size_t>(data_.geometry.segments);
-  const bool first = taut_.size() != n;  // after a reset: no step to compare with
-  taut_.resize(n);
+  const bool first = slack_.size() != n;  // after a reset: no step to compare with
+  slack_.resize(n);
+  const std::vector<double> strain = segmentStrains(data_.geometry, jointPositions());
   for (size_t e = 0; e < n; ++e)
   {
     const bool taut = multipliers_[e] < 0.0;
-    if (!first && taut && !taut_[e])
+    if (first)
+      slack_[e] = !taut && strain[e] < 0.0;
+    else if (slack_[e] && taut)
+    {
       ++report.snaps;
-    taut_[e] = taut;
+      slack_[e] = false;
+    }
+    else if (!taut && strain[e] <= 0.0)
+      slack_[e] = true;
+    report.max_strain = std::max(report.max_strain, strain[e]);
   }
-  for (double eps : segmentStrains(data_.geometry, jointPositions()))
-    report.max_strain = std::max(report.max_strain, eps);
 }
 
 double Simulator::largestRelativeSpeed(double t) const

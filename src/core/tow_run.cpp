@@ -54,6 +54,34 @@ void TowRun::setAutopilot(const AutopilotLoop& loop)
   ticks_ = started_ ? firstTickFrom(time()) : 0;
 }
 
+namespace
+{
+// The lengths of the first `segments` elements of joints x from the tow point.
+std::vector<double> segmentLengths(const Eigen::Vector3d& tow_point_W, int segments, const Eigen::Matrix3Xd& x)
+{
+  std::vector<double> lengths(static_cast<size_t>(segments));
+  Eigen::Vector3d x_f = tow_point_W;
+  for (int e = 0; e < segments; ++e)
+  {
+    lengths[static_cast<size_t>(e)] = (x.col(e) - x_f).norm();
+    x_f = x.col(e);
+  }
+  return lengths;
+}
+
+// The joints laid out again from the tow point along their directions at the given lengths.
+void layOut(const Eigen::Vector3d& tow_point_W, const std::vector<double>& lengths, Eigen::Matrix3Xd& x)
+{
+  Eigen::Vector3d x_f = tow_point_W;
+  for (size_t e = 0; e < lengths.size(); ++e)
+  {
+    const Eigen::Index j = static_cast<Eigen::Index>(e);
+    x.col(j) = x_f + lengths[e] * (x.col(j) - x_f).normalized();
+    x_f = x.col(j);
+  }
+}
+}  // namespace
+
 ChainState TowRun::initialState(double t, std::string* warning) const
 {
   const ShipEndState tow = ship_->towPoint(t);
@@ -90,9 +118,16 @@ ChainState TowRun::initialState(double t, std::string* warning) const
       state.v.colwise() = tow.v_W;
       break;
   }
-  // The initial shapes know nothing of the seabed: joints below it are raised onto it.
+  // The initial shapes know nothing of the seabed: joints below it are raised onto it (and an elastic
+  // cable's segments laid out again at their lengths along their new directions, as the projection does
+  // for rigid links).
   if (model_->seabed())
+  {
+    const std::vector<double> lengths = segmentLengths(tow.p_W, geometry.segments, state.x);
     liftAboveSeabed(*model_->seabed(), state);
+    if (model_->cable().elastic())
+      layOut(tow.p_W, lengths, state.x);
+  }
   // An elastic cable starts with no segment stretching (else a heaving tow point would start it with a jerk
   // of its axial damping); the projection does this for rigid links.
   if (model_->cable().elastic())

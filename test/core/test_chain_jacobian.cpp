@@ -279,6 +279,67 @@ TEST(ChainJacobian, GeometricStiffnessIsTheDerivativeOfTheAxialForceTurningWithT
   EXPECT_EQ(J.dh_dx.norm(), 0.0);
 }
 
+// An elastic segment's axial force as loads on its joints, (+T s, -T s) with T = max(0, EA (d/d0 - 1) +
+// c s.(v_a - v_f)/d0) written out here: its derivatives in the joint positions (at rest: the stiffness and
+// the force turning with the axis) and in the velocities (the damping) against central differences, taut;
+// slack, nothing.
+TEST(ChainJacobian, ElasticAxialForceDerivativesMatchCentralDifferences)
+{
+  CableParams cable;
+  cable.axial_stiffness = 2.0e5;
+  cable.axial_damping = 3.0e3;
+  const double d0 = 2.0;
+  std::mt19937 rng(29);
+  auto loads = [&](const Eigen::Vector3d& x_f, const Eigen::Vector3d& x_a, const Eigen::Vector3d& v_f,
+                   const Eigen::Vector3d& v_a)
+  {
+    const Eigen::Vector3d s = (x_a - x_f).normalized();
+    const double d = (x_a - x_f).norm();
+    const double T =
+        std::max(0.0, *cable.axial_stiffness * (d / d0 - 1.0) + cable.axial_damping * s.dot(v_a - v_f) / d0);
+    Vector6d h;
+    h << T * s, -T * s;
+    return h;
+  };
+  for (int trial = 0; trial < 40; ++trial)
+  {
+    const Eigen::Vector3d x_f = randomVector(rng, 10.0);
+    const Eigen::Vector3d axis = randomVector(rng, 1.0).normalized();
+    const Eigen::Vector3d x_a = x_f + d0 * (1.01 + 0.002 * trial) * axis;  // stretched 1 .. 9 %
+    const bool moving = trial % 2 == 1;
+    // Moving: the relative velocity along the axis only (its normal part turns s, left out of J).
+    const Eigen::Vector3d v_f = randomVector(rng, 1.0), v_a = v_f + (moving ? 0.05 : 0.0) * axis;
+    Matrix6d fd_x, fd_v;
+    for (int j = 0; j < 12; ++j)
+    {
+      Eigen::Vector3d joint[4] = { x_f, x_a, v_f, v_a };
+      joint[j / 3][j % 3] += 1e-6;
+      const Vector6d plus = loads(joint[0], joint[1], joint[2], joint[3]);
+      joint[j / 3][j % 3] -= 2e-6;
+      (j < 6 ? fd_x : fd_v).col(j % 6) = (plus - loads(joint[0], joint[1], joint[2], joint[3])) / 2e-6;
+    }
+    const ElementKinematics k = ElementKinematics::fromJoints(x_f, x_a, v_f, v_a);
+    const double T = -loads(x_f, x_a, v_f, v_a).tail<3>().dot(k.s);
+    ElementJacobian J;
+    J.dh_dx.setZero();
+    J.dh_dv.setZero();
+    addGeometricStiffness(k, -T, J);
+    addAxialStiffness(cable, d0, k, J);
+    if (!moving)  // with a stretch rate the damping's turning with s is left out of J
+      EXPECT_LT(relativeDifference(J.dh_dx, fd_x), 1e-6) << "trial " << trial;
+    EXPECT_LT(relativeDifference(J.dh_dv, fd_v), 1e-6) << "trial " << trial;
+  }
+  // Slack: no force, no derivative.
+  ElementJacobian J;
+  J.dh_dx.setZero();
+  J.dh_dv.setZero();
+  addAxialStiffness(cable, d0,
+                    ElementKinematics::fromJoints(Eigen::Vector3d::Zero(), 1.9 * Eigen::Vector3d::UnitX(),
+                                                  Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()),
+                    J);
+  EXPECT_EQ(J.dh_dx.norm() + J.dh_dv.norm(), 0.0);
+}
+
 TEST(ChainJacobian, EndBodyForwardDifferencesMatchCentralDifferences)
 {
   // The vehicle in Approach A, B and B with the Munk terms, fins moving, thrust, on the seabed or not.

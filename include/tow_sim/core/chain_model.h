@@ -112,6 +112,10 @@ public:
       visit(eta, sp.vehicle_stiffness, sp.vehicle_damping);
   }
 
+  // The seabed's force on cable segment e at its aft joint, the joint's own (zero without a seabed): an
+  // elastic segment takes it on that joint directly (its stretch would feel the rigid projection's moment arm).
+  Eigen::Vector3d segmentContactForce(int e, const ElementKinematics& k, const ChainGeometry& geometry) const;
+
 private:
   void addContact(int e, const ElementKinematics& k, const ChainGeometry& geometry, BodyDynamics& out) const;
 

@@ -109,7 +109,8 @@ struct StepReport
   double max_length_error = 0.0;  // [-] largest relative length error left by a step, before projection
   ValueRange tension_ship;        // [N] |T_1| at the end of each accepted step
   ValueRange tension_vehicle;     // [N] |T_{nu+1}| likewise
-  int snaps = 0;                  // elastic cable: segments that went from slack (T = 0) to taut in a step
+  int snaps = 0;                  // elastic cable: segments that went from slack (T = 0 at or below their
+                                  // rest length) to taut (T > 0)
   // [-] elastic cable: the largest segment strain at the end of a step (-inf: none)
   double max_strain = -std::numeric_limits<double>::infinity();
 };
@@ -224,7 +225,7 @@ private:
   StateVector dydt_;
   Eigen::Matrix3Xd tensions_, accelerations_;
   std::vector<double> multipliers_;  // each element's axial multiplier at the current state [N]
-  std::vector<char> taut_;           // elastic cable: each segment taut at the last accepted step
+  std::vector<char> slack_;          // elastic cable: each segment slack (for counting snaps)
   void countSnaps(StepReport& report);
   ImplicitStepper implicit_;
   const RosenbrockTableau* tableau_ = nullptr;  // the implicit steppers' method
