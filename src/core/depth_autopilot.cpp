@@ -94,9 +94,23 @@ void DepthAutopilot::setAltitudeSetpoint(double altitude)
   }
 }
 
+void DepthAutopilot::setCableOutFeedForward(double cable_out)
+{
+  if (std::isnan(cable_out))
+  {
+    feed_forward_ = false;
+    cable_out_base_ = std::numeric_limits<double>::quiet_NaN();
+    return;
+  }
+  requireInRange("cable out feed-forward", cable_out, 0.0, 1e5, "[m]", true);
+  cable_out_base_ = cable_out;
+  feed_forward_ = true;
+}
+
 bool DepthAutopilot::addVehicle(const VehicleMeasurement& m)
 {
-  if (!std::isfinite(m.t) || !m.p_W.allFinite() || !m.v_W.allFinite() || std::isinf(m.altitude))
+  if (!std::isfinite(m.t) || !m.p_W.allFinite() || !m.v_W.allFinite() || std::isinf(m.altitude) ||
+      std::isinf(m.cable_out))
     throw std::invalid_argument("vehicle odometry: the stamp, position and velocity must be finite");
   if (has_vehicle_ && m.t <= vehicle_.t)
     return false;
@@ -163,7 +177,10 @@ AutopilotCommand DepthAutopilot::update(double now)
   integrated_ = true;
   const double depth = -vehicle_.p_W.z();
   out.depth_error = setpoint_ - depth;
-  out.elevator = elevator(out.depth_error, vehicle_.v_W.z(), dt, out);
+  if (p_.actuator != DepthAutopilotParams::Actuator::kWinch)
+    out.elevator = elevator(out.depth_error, vehicle_.v_W.z(), dt, out);
+  if (p_.actuator != DepthAutopilotParams::Actuator::kElevator)
+    winch(out.depth_error, dt, out);
 
   if (p_.track_keeping && track_.usable())
   {
@@ -176,6 +193,30 @@ AutopilotCommand DepthAutopilot::update(double now)
   return out;
 }
 
+void DepthAutopilot::winch(double error, double dt, AutopilotCommand& out)
+{
+  const double L = vehicle_.cable_out;
+  if (!std::isfinite(L))
+    return;  // no winch command without the cable out
+  if (!std::isfinite(cable_out_base_))
+    cable_out_base_ = L;  // no plan: hold what is out, the feedback does the rest
+  const double max = p_.max_payout_rate;
+  const double tau = p_.winch_time_constant;
+  auto rate = [&](double integral) { return (cable_out_base_ + p_.winch_kp * error + integral - L) / tau; };
+  if (dt > 0.0)
+  {
+    // Conditional integration, as the elevator's: not further into a saturated rate.
+    const double step = p_.winch_ki * error * dt;
+    const double u = rate(winch_integral_ + step);
+    if (!(std::abs(u) > max && step * u > 0.0))
+      winch_integral_ += step;
+  }
+  out.winch = true;
+  out.winch_integral = winch_integral_;
+  out.cable_out_target = cable_out_base_ + p_.winch_kp * error + winch_integral_;
+  out.payout_rate = std::clamp(rate(winch_integral_), -max, max);
+}
+
 void DepthAutopilot::reset()
 {
   track_.clear();
@@ -184,6 +225,9 @@ void DepthAutopilot::reset()
   has_vehicle_ = false;
   integrated_ = false;
   integral_ = 0.0;
+  winch_integral_ = 0.0;
+  if (!feed_forward_)
+    cable_out_base_ = std::numeric_limits<double>::quiet_NaN();
 }
 
 }  // namespace tow_sim

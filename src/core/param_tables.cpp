@@ -298,7 +298,20 @@ const ParamTable<DepthAutopilotParams>& autopilotParams()
           .number("thrust", &A::thrust, "N", -1e6, 1e6, kClosed, "constant thrust command")
           .number("odom_timeout", &A::odom_timeout, "s", 0.0, 3600.0, kOpen,
                   "no new vehicle odometry for this long (since it arrived): fins centred")
-          .number("max_depth", &A::max_depth, "m", 0.0, 1e5, kOpen, "setpoints above it are rejected");
+          .number("max_depth", &A::max_depth, "m", 0.0, 1e5, kOpen, "setpoints above it are rejected")
+          .choice("actuator", &A::actuator,
+                  { { "elevator", A::Actuator::kElevator },
+                    { "winch", A::Actuator::kWinch },
+                    { "both", A::Actuator::kBoth } },
+                  "what holds the depth: the elevator (PID above), the winch (payout rate; needs winch.enabled), "
+                  "or both")
+          .number("winch_kp", &A::winch_kp, "m/m", 0.0, 1000.0, kClosed,
+                  "winch: cable out aimed at per metre of depth error, on top of the planner's steady cable out")
+          .number("winch_ki", &A::winch_ki, "m/(m s)", 0.0, 100.0, kClosed,
+                  "winch: cable out per metre-second of integrated depth error")
+          .number("winch_time_constant", &A::winch_time_constant, "s", 0.0, 1000.0, kOpen,
+                  "winch: payout rate = (cable out aimed at − cable out) / this")
+          .number("max_payout_rate", &A::max_payout_rate, "m/s", 0.0, 100.0, kOpen, "winch: payout command limit");
   return table;
 }
 

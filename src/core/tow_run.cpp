@@ -46,6 +46,8 @@ void TowRun::setAutopilot(const AutopilotLoop& loop)
 {
   loop.params.validate("autopilot.");
   requireInRange("autopilot.rate", loop.rate, 0.1, 1000.0, "[Hz]");
+  if (loop.enabled && loop.params.actuator != DepthAutopilotParams::Actuator::kElevator && !config_.winch.enabled)
+    throw std::invalid_argument("autopilot.actuator: winch and both need the winch (winch.enabled: true)");
   autopilot_loop_ = loop;
   std::stable_sort(autopilot_loop_.setpoints.begin(), autopilot_loop_.setpoints.end(),
                    [](const AutopilotSetpoint& a, const AutopilotSetpoint& b) { return a.t < b.t; });
@@ -162,7 +164,8 @@ std::string TowRun::start(double t)
   std::string warning;
   const ChainState state = initialState(t, &warning);
   sim_.reset(t, state);  // the winch from rest, its command cleared
-  if (due && config_.winch.enabled)
+  if (due && config_.winch.enabled &&
+      !(autopilot_ && autopilot_loop_.params.actuator != DepthAutopilotParams::Actuator::kElevator))
     sim_.setWinchCommand(due->payout_rate);
   attitude_.reset();
   max_length_error_ = 0.0;
@@ -189,11 +192,15 @@ void TowRun::autopilotTick(double t)
   m.v_W = o.v_cg_W;
   if (model_->seabed())
     m.altitude = model_->seabed()->altitude(o.p_cg_W);
+  if (config_.winch.enabled)
+    m.cable_out = sim_.cableLength();
   autopilot_->addVehicle(m);
   const ShipPose pose = ship_->pose(t);
   autopilot_->addShip(Eigen::Vector2d(pose.x, pose.y));
   const AutopilotCommand c = autopilot_->update(t);
   sim_.command(c.rudder, c.elevator, c.thrust);
+  if (c.winch)
+    sim_.setWinchCommand(c.payout_rate);
 }
 
 StepReport TowRun::advanceTo(double t)
@@ -236,7 +243,9 @@ StepReport TowRun::advanceTo(double t)
       const CommandEvent& c = commands_[next_command_++];
       if (!autopilot_)
         sim_.command(c.rudder, c.elevator, c.thrust);
-      if (config_.winch.enabled)
+      const bool autopilot_winch =
+          autopilot_ && autopilot_loop_.params.actuator != DepthAutopilotParams::Actuator::kElevator;
+      if (config_.winch.enabled && !autopilot_winch)  // else the autopilot drives the winch
         sim_.setWinchCommand(c.payout_rate);
     }
     else if (t_next == t_setpoint)
@@ -259,6 +268,16 @@ void TowRun::applySetpoint(const AutopilotSetpoint& sp)
     autopilot_->setAltitudeSetpoint(sp.value);
   else
     autopilot_->setSetpoint(sp.value);
+  // The winch's feed-forward: the planner's steady cable out for a depth at the ship's speed now (none in
+  // altitude mode, whose depth changes with the bottom, or where no cable out reaches the depth).
+  if (autopilot_loop_.cable_out_plan && autopilot_loop_.params.actuator != DepthAutopilotParams::Actuator::kElevator)
+  {
+    const double plan = sp.altitude
+                            ? std::numeric_limits<double>::quiet_NaN()
+                            : autopilot_loop_.cable_out_plan(sp.value, ship_->pose(std::max(sp.t, time())).speed);
+    autopilot_->setCableOutFeedForward(std::isfinite(plan) && plan > 0.0 ? plan
+                                                                         : std::numeric_limits<double>::quiet_NaN());
+  }
 }
 
 void TowRun::elasticOutputs(TowSnapshot& s)

@@ -32,6 +32,16 @@ DepthAutopilotNode::DepthAutopilotNode(ros::NodeHandle nh, ros::NodeHandle pnh)
       nh_.subscribe("autopilot/altitude_setpoint", 10, &DepthAutopilotNode::onAltitudeSetpoint, this);
   state_sub_ = nh_.subscribe("cable/state", 10, &DepthAutopilotNode::onCableState, this);
   fin_pub_ = nh_.advertise<tow_sim::FinCommand>("fins/command", 10);
+  drives_winch_ = node_params_.controller.actuator != DepthAutopilotParams::Actuator::kElevator;
+  if (drives_winch_)
+  {
+    winch_pub_ = nh_.advertise<std_msgs::Float64>("winch/command", 10);
+    ROS_INFO(
+        "depth_autopilot: the winch holds the depth%s (winch/command, at most %.2f m/s; no feed-forward: "
+        "the cable out at the first cable/state stands in for the plan)",
+        node_params_.controller.actuator == DepthAutopilotParams::Actuator::kBoth ? " with the elevator" : "",
+        node_params_.controller.max_payout_rate);
+  }
   timer_ = nh_.createTimer(ros::Duration(1.0 / node_params_.rate), &DepthAutopilotNode::tick, this);
   ROS_INFO(
       "depth_autopilot: kp %.3g rad/m, ki %.3g rad/(m s), kd %.3g rad/(m/s), elevator within +-%.3f rad; "
@@ -71,6 +81,8 @@ void DepthAutopilotNode::onVehicleOdometry(const nav_msgs::Odometry::ConstPtr& m
     m.v_W = q.normalized() * Eigen::Vector3d(v.x, v.y, v.z);  // the twist is in the vehicle frame
     // Altitude from the newest cable/state of the same moment (within 0.5 s), moved by the depth change
     // since (a flat bottom over that short time).
+    if (have_cable_out_ && std::abs(m.t - cable_out_stamp_) <= 0.5)
+      m.cable_out = cable_out_;
     if (have_altitude_ && std::abs(m.t - altitude_stamp_) <= 0.5)
       m.altitude = altitude_ - (-p.z - altitude_depth_);
     else if (autopilot_.altitudeMode())
@@ -148,6 +160,12 @@ void DepthAutopilotNode::onAltitudeSetpoint(const std_msgs::Float64::ConstPtr& m
 
 void DepthAutopilotNode::onCableState(const tow_sim::CableState::ConstPtr& msg)
 {
+  if (std::isfinite(msg->cable_length) && msg->cable_length > 0.0)
+  {
+    have_cable_out_ = true;
+    cable_out_ = msg->cable_length;
+    cable_out_stamp_ = stampOf(msg->header);
+  }
   if (!msg->seabed_present || !std::isfinite(msg->vehicle_altitude) || !std::isfinite(msg->vehicle_depth))
     return;
   have_altitude_ = true;
@@ -172,6 +190,13 @@ void DepthAutopilotNode::tick(const ros::TimerEvent&)
     cmd.elevator = c.elevator;
     cmd.thrust = c.thrust;
     fin_pub_.publish(cmd);
+    if (drives_winch_)
+    {
+      // Stopped while waiting, stale or without a recent cable out.
+      std_msgs::Float64 rate;
+      rate.data = c.winch ? c.payout_rate : 0.0;
+      winch_pub_.publish(rate);
+    }
   }
   catch (const std::exception& e)
   {

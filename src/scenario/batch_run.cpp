@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <sstream>
 
 #include "tow_sim/scenario/ship_path.h"
+#include "tow_sim/scenario/towing_chart.h"
 
 namespace tow_sim
 {
@@ -60,7 +62,18 @@ void runScenario(const Scenario& sc, std::ostream& series, std::ostream& shapes,
   TowRun run(sc.config, ship, sc.initial);
   run.schedule(sc.commands);
   if (sc.autopilot.enabled)
-    run.setAutopilot(sc.autopilot);
+  {
+    // The winch's feed-forward from the towing chart's planner (tow_sim_chart --target-depth).
+    AutopilotLoop loop = sc.autopilot;
+    const SimulationConfig config = sc.config;
+    loop.cable_out_plan = [config](double depth, double speed)
+    {
+      const CableOutPlan plan = planCableOut(config, depth, speed, config.environment.current_W,
+                                             config.winch.min_length, config.winch.max_length);
+      return plan.reachable ? plan.cable_out : std::numeric_limits<double>::quiet_NaN();
+    };
+    run.setAutopilot(loop);
+  }
   result = BatchResult();
   result.start_warning = run.start(0.0);
 

@@ -78,7 +78,7 @@ const std::string& outputRoot()
 const char* const kShippedScenarios[] = {
   "report_elevator_step", "turn_180",     "speed_change",    "zigzag",
   "winch_payout",         "seabed_shoal", "sheared_current", "autopilot_depth_turn",
-  "autopilot_terrain",    "head_seas",    "heave_snap"
+  "autopilot_terrain",    "head_seas",    "autopilot_winch", "heave_snap"
 };
 
 // Runs a shipped scenario once per test process (whichever test asks first), in this process through the

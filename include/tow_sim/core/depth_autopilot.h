@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 
 #include <deque>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -36,6 +37,22 @@ struct DepthAutopilotParams
   double thrust = 0.0;           // [N] constant thrust command, [-1e6, 1e6]
   double odom_timeout = 1.0;     // [s] older vehicle odometry is stale: fins centred, (0, 3600]
   double max_depth = 10000.0;    // [m] setpoints are accepted in [0, max_depth], (0, 1e5]
+  // What holds the depth: the elevator (the PID above), the winch, or both. The winch: the cable out it
+  // aims at is L* = L_ff + winch_kp e + winch_ki int(e) dt (e as above, positive: too shallow, so more
+  // cable), L_ff the planner's steady cable out for the setpoint (setCableOutFeedForward; without one the
+  // cable out at the first measurement); the payout rate closes the gap, (L* - L)/winch_time_constant,
+  // within +-max_payout_rate. The integral stops growing while the rate saturates in its direction.
+  enum class Actuator
+  {
+    kElevator,
+    kWinch,  // the elevator stays centred
+    kBoth
+  };
+  Actuator actuator = Actuator::kElevator;
+  double winch_kp = 1.0;              // [m/m] cable out per metre of depth error, [0, 1000]
+  double winch_ki = 0.05;             // [m/(m s)] integral gain, [0, 100]
+  double winch_time_constant = 30.0;  // [s] of the payout toward L*, (0, 1000]
+  double max_payout_rate = 0.5;       // [m/s] payout command limit, (0, 100]
 
   // Throws std::invalid_argument naming `prefix + key`, the value and its range.
   void validate(const std::string& prefix = "") const;
@@ -72,10 +89,11 @@ private:
 // Vehicle CG measurement from odometry.
 struct VehicleMeasurement
 {
-  double t = 0.0;                                              // [s] stamp
-  Eigen::Vector3d p_W = Eigen::Vector3d::Zero();               // [m] CG position, world ENU (z up, depth = -z)
-  Eigen::Vector3d v_W = Eigen::Vector3d::Zero();               // [m/s] CG velocity, world ENU
-  double altitude = std::numeric_limits<double>::quiet_NaN();  // [m] CG above the seabed; NaN: unknown
+  double t = 0.0;                                               // [s] stamp
+  Eigen::Vector3d p_W = Eigen::Vector3d::Zero();                // [m] CG position, world ENU (z up, depth = -z)
+  Eigen::Vector3d v_W = Eigen::Vector3d::Zero();                // [m/s] CG velocity, world ENU
+  double altitude = std::numeric_limits<double>::quiet_NaN();   // [m] CG above the seabed; NaN: unknown
+  double cable_out = std::numeric_limits<double>::quiet_NaN();  // [m] the winch's; NaN: unknown (no winch command)
   // [s] when it arrived, on update()'s clock; NaN: at its stamp. Staleness counts from here.
   double received = std::numeric_limits<double>::quiet_NaN();
 };
@@ -98,6 +116,12 @@ struct AutopilotCommand
   bool tracking = false;           // the rudder is steering on the ship's track
   double track_offset = 0.0;       // [m] positive to port
   double track_offset_rate = 0.0;  // [m/s]
+  // The winch (actuator winch or both), with the cable out known: the payout rate it commands [m/s]
+  // (positive pays out), the cable out it aims at [m] and the integral's part of it [m].
+  bool winch = false;
+  double payout_rate = 0.0;
+  double cable_out_target = 0.0;
+  double winch_integral = 0.0;
 };
 
 class DepthAutopilot
@@ -116,6 +140,9 @@ public:
   bool hasSetpoint() const { return has_setpoint_; }
   double setpoint() const { return setpoint_; }
 
+  // The planner's steady cable out [m] for the present setpoint, the winch's feed-forward (> 0, finite;
+  // else std::invalid_argument). NaN clears it: the cable out at the next measurement stands in.
+  void setCableOutFeedForward(double cable_out);
   // Vehicle odometry; throws std::invalid_argument for a non-finite field. A measurement whose stamp is
   // not after the previous one is ignored (returns false). Without a setpoint, the first measurement's
   // depth becomes the setpoint.
@@ -135,6 +162,7 @@ public:
 
 private:
   double elevator(double error, double v_up, double dt, AutopilotCommand& out);
+  void winch(double error, double dt, AutopilotCommand& out);
 
   DepthAutopilotParams p_;
   PastTrack track_;
@@ -147,6 +175,9 @@ private:
   double integrated_until_ = 0.0;  // [s] stamp of the measurement last integrated
   bool integrated_ = false;
   double integral_ = 0.0;  // [rad] -ki int(e) dt: the integral term's part of the elevator
+  double cable_out_base_ = std::numeric_limits<double>::quiet_NaN();  // [m] L_ff, or the first cable out
+  bool feed_forward_ = false;                                         // cable_out_base_ is the planner's
+  double winch_integral_ = 0.0;                                       // [m] winch_ki int(e) dt
 };
 
 // The autopilot in a tow run's loop (tow_sim_batch): its gains, its rate and a setpoint schedule.
@@ -162,6 +193,9 @@ struct AutopilotLoop
   DepthAutopilotParams params;
   double rate = 10.0;                        // [Hz] fin commands, [0.1, 1000]
   std::vector<AutopilotSetpoint> setpoints;  // sorted by time; none: hold the first depth
+  // The winch's feed-forward (actuator winch or both): the steady cable out [m] for a depth setpoint [m]
+  // at a ship speed [m/s], NaN when none reaches it (the batch plans it with tow_sim_chart's planner).
+  std::function<double(double depth, double speed)> cable_out_plan;
 };
 
 }  // namespace tow_sim

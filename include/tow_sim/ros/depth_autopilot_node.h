@@ -1,5 +1,6 @@
 // The ROS adapter around the core DepthAutopilot: vehicle/odom, ship/odom and autopilot/depth_setpoint in;
-// fins/command out at ~rate. Parameters, topics and signs: README.md ("depth_autopilot_node").
+// fins/command out at ~rate, and winch/command when ~actuator is winch or both (the cable out from
+// cable/state). Parameters, topics and signs: README.md ("depth_autopilot_node").
 #pragma once
 
 #include <nav_msgs/Odometry.h>
@@ -38,7 +39,11 @@ private:
   // The newest cable/state with a seabed: the vehicle's altitude and depth, and their stamp.
   bool have_altitude_ = false;
   double altitude_ = 0.0, altitude_depth_ = 0.0, altitude_stamp_ = 0.0;  // [m], [m], [s]
-  ros::Publisher fin_pub_;
+  // The newest cable/state's cable out and its stamp (the winch actuator's measurement).
+  bool have_cable_out_ = false;
+  double cable_out_ = 0.0, cable_out_stamp_ = 0.0;  // [m], [s]
+  bool drives_winch_ = false;                       // ~actuator winch or both
+  ros::Publisher fin_pub_, winch_pub_;
   ros::Timer timer_;
 };
 
