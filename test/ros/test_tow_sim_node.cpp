@@ -766,6 +766,26 @@ TEST(TowSimNode, PlanCableOutAnswersAndTheWinchExecutesIt)
   ASSERT_TRUE(base.call(plan));
   EXPECT_FALSE(plan.response.reachable);
   EXPECT_NE(plan.response.message.find("out of reach"), std::string::npos) << plan.response.message;
+  // The speed window on 120 m out for 40..60 m, as the library's (tow_sim_chart --depth-band); a window alone
+  // with depth 0; a bad band refused naming it.
+  const tow_sim::SpeedWindow window = tow_sim::speedWindow(config, 120.0, 40.0, 60.0, Eigen::Vector3d::Zero());
+  ASSERT_TRUE(window.found) << window.reason;
+  plan.request.depth = 0.0;
+  plan.request.depth_min = 40.0;
+  plan.request.depth_max = 60.0;
+  plan.request.window_cable_out = 120.0;
+  ASSERT_TRUE(base.call(plan));
+  EXPECT_TRUE(plan.response.window_found) << plan.response.message;
+  EXPECT_NEAR(plan.response.slowest, window.slowest, 1e-9);
+  EXPECT_NEAR(plan.response.fastest, window.fastest, 1e-9);
+  EXPECT_FALSE(plan.response.reachable);  // no cable-out plan asked for
+  std::printf("plan_cable_out window: %.4f .. %.4f m/s (library %.4f .. %.4f m/s)\n", plan.response.slowest,
+              plan.response.fastest, window.slowest, window.fastest);
+  plan.request.depth_max = 30.0;
+  ASSERT_TRUE(base.call(plan));
+  EXPECT_NE(plan.response.message.find("depth_max = 30"), std::string::npos) << plan.response.message;
+  plan.request.depth_min = plan.request.depth_max = plan.request.window_cable_out = 0.0;
+
   plan.request.depth = 50.0;
   plan.request.execute = true;
   ASSERT_TRUE(base.call(plan));
