@@ -71,7 +71,11 @@ const ParamTable<AutopilotNodeParams>& autopilotNodeParams()
   static const ParamTable<A> table = ParamTable<A>()
                                          .number("rate", &A::rate, "Hz", 0.1, 1000.0, kClosed, "fins/command")
                                          .nest("", &A::controller, autopilotParams())
-                                         .text("world_frame", &A::world_frame, "non-empty", "frame of both odometries");
+                                         .text("world_frame", &A::world_frame, "non-empty", "frame of both odometries")
+                                         .text("plan_service", &A::plan_service, "a service name, or empty",
+                                               "tow_sim_node's ~plan_cable_out (relative to the node's namespace), "
+                                               "asked for the winch's feed-forward at each depth setpoint; empty: "
+                                               "none, the cable out at the first cable/state stands in");
   return table;
 }
 

@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
@@ -36,11 +37,12 @@ DepthAutopilotNode::DepthAutopilotNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   if (drives_winch_)
   {
     winch_pub_ = nh_.advertise<std_msgs::Float64>("winch/command", 10);
-    ROS_INFO(
-        "depth_autopilot: the winch holds the depth%s (winch/command, at most %.2f m/s; no feed-forward: "
-        "the cable out at the first cable/state stands in for the plan)",
-        node_params_.controller.actuator == DepthAutopilotParams::Actuator::kBoth ? " with the elevator" : "",
-        node_params_.controller.max_payout_rate);
+    const std::string plan = node_params_.plan_service.empty()
+                                 ? std::string("none: the cable out at the first cable/state stands in")
+                                 : "from " + nh_.resolveName(node_params_.plan_service) + " at each depth setpoint";
+    ROS_INFO("depth_autopilot: the winch holds the depth%s (winch/command, at most %.2f m/s; feed-forward %s)",
+             node_params_.controller.actuator == DepthAutopilotParams::Actuator::kBoth ? " with the elevator" : "",
+             node_params_.controller.max_payout_rate, plan.c_str());
   }
   timer_ = nh_.createTimer(ros::Duration(1.0 / node_params_.rate), &DepthAutopilotNode::tick, this);
   ROS_INFO(
@@ -130,6 +132,11 @@ void DepthAutopilotNode::onSetpoint(const std_msgs::Float64::ConstPtr& msg)
     autopilot_.setSetpoint(msg->data);
     announced_hold_ = true;
     ROS_INFO("depth_autopilot: depth setpoint %.2f m", msg->data);
+    if (drives_winch_ && !node_params_.plan_service.empty() && msg->data > 0.0)
+    {
+      plan_depth_ = msg->data;  // asked at the next tick
+      plan_retry_at_ = 0.0;
+    }
   }
   catch (const std::invalid_argument&)
   {
@@ -147,6 +154,10 @@ void DepthAutopilotNode::onAltitudeSetpoint(const std_msgs::Float64::ConstPtr& m
   {
     autopilot_.setAltitudeSetpoint(msg->data);
     announced_hold_ = true;
+    // No feed-forward in altitude mode (its depth changes with the bottom): the feedback alone.
+    plan_depth_ = std::numeric_limits<double>::quiet_NaN();
+    if (drives_winch_)
+      autopilot_.setCableOutFeedForward(std::numeric_limits<double>::quiet_NaN());
     ROS_INFO("depth_autopilot: altitude setpoint %.2f m above the seabed", msg->data);
   }
   catch (const std::invalid_argument&)
@@ -174,11 +185,63 @@ void DepthAutopilotNode::onCableState(const tow_sim::CableState::ConstPtr& msg)
   altitude_stamp_ = stampOf(msg->header);
 }
 
+void DepthAutopilotNode::askForPlan(double now)
+{
+  if (plan_call_.valid() || std::isnan(plan_depth_) || now < plan_retry_at_)
+    return;
+  plan_depth_asked_ = plan_depth_;
+  tow_sim::PlanCableOut srv;
+  srv.request.depth = plan_depth_;  // at the ship's present speed, no speed window, not executed
+  const std::string name = nh_.resolveName(node_params_.plan_service);
+  plan_call_ = std::async(std::launch::async,
+                          [name, srv]() mutable
+                          {
+                            const bool answered = ros::service::call(name, srv);
+                            return std::make_pair(answered, srv.response);
+                          });
+}
+
+void DepthAutopilotNode::takePlan(double now)
+{
+  if (!plan_call_.valid() || plan_call_.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
+    return;
+  const auto [answered, plan] = plan_call_.get();
+  const std::string name = nh_.resolveName(node_params_.plan_service);
+  if (!answered)
+  {
+    ROS_WARN_THROTTLE(10.0,
+                      "depth_autopilot: no answer from %s (is tow_sim_node running?): asking again in 2 s; "
+                      "meanwhile the winch works without feed-forward",
+                      name.c_str());
+    plan_retry_at_ = now + 2.0;
+    return;
+  }
+  if (plan_depth_asked_ != plan_depth_ || autopilot_.altitudeMode())
+    return;  // a newer setpoint is asked for next, or altitude mode took over
+  plan_depth_ = std::numeric_limits<double>::quiet_NaN();
+  if (plan.reachable && std::isfinite(plan.cable_out) && plan.cable_out > 0.0)
+  {
+    autopilot_.setCableOutFeedForward(plan.cable_out);
+    ROS_INFO("depth_autopilot: feed-forward %.2f m of cable out for %.2f m (%s: steady tension %.0f N at the ship)",
+             plan.cable_out, plan_depth_asked_, name.c_str(), plan.tension_ship);
+    return;
+  }
+  autopilot_.setCableOutFeedForward(std::numeric_limits<double>::quiet_NaN());
+  ROS_WARN("depth_autopilot: no feed-forward for %.2f m (%s: %s): the feedback alone", plan_depth_asked_, name.c_str(),
+           plan.message.c_str());
+}
+
 void DepthAutopilotNode::tick(const ros::TimerEvent&)
 {
   try
   {
-    const AutopilotCommand c = autopilot_.update(ros::Time::now().toSec());
+    const double now = ros::Time::now().toSec();
+    if (drives_winch_)
+    {
+      takePlan(now);
+      askForPlan(now);
+    }
+    const AutopilotCommand c = autopilot_.update(now);
     if (c.status == AutopilotCommand::Status::kWaiting)
       ROS_INFO_THROTTLE(10.0, "depth_autopilot: waiting for %s; fins centred", vehicle_sub_.getTopic().c_str());
     else if (c.status == AutopilotCommand::Status::kStale)

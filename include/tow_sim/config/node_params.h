@@ -44,6 +44,8 @@ struct AutopilotNodeParams
   DepthAutopilotParams controller;
   double rate = 10.0;                // [Hz] fins/command
   std::string world_frame = "odom";  // frame of both odometries
+  // tow_sim_node's ~plan_cable_out, asked for the winch's feed-forward at each depth setpoint ("": none).
+  std::string plan_service = "tow_sim/plan_cable_out";
 };
 const ParamTable<AutopilotNodeParams>& autopilotNodeParams();
 void validate(const AutopilotNodeParams& params, const std::string& prefix);

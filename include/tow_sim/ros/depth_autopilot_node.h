@@ -1,15 +1,20 @@
 // The ROS adapter around the core DepthAutopilot: vehicle/odom, ship/odom and autopilot/depth_setpoint in;
 // fins/command out at ~rate, and winch/command when ~actuator is winch or both (the cable out from
-// cable/state). Parameters, topics and signs: README.md ("depth_autopilot_node").
+// cable/state, the feed-forward from tow_sim_node's ~plan_cable_out). Parameters, topics and signs:
+// README.md ("depth_autopilot_node").
 #pragma once
 
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
 #include <std_msgs/Float64.h>
 
+#include <future>
+#include <limits>
+#include <utility>
 #include <string>
 
 #include "tow_sim/CableState.h"
+#include "tow_sim/PlanCableOut.h"
 #include "tow_sim/config/node_params.h"
 #include "tow_sim/core/depth_autopilot.h"
 
@@ -30,6 +35,8 @@ private:
   void onCableState(const tow_sim::CableState::ConstPtr& msg);
   void tick(const ros::TimerEvent& event);
   bool frameOk(const nav_msgs::Odometry& msg, const char* topic);
+  void askForPlan(double now);
+  void takePlan(double now);
 
   ros::NodeHandle nh_, pnh_;
   AutopilotNodeParams node_params_;  // the controller's gains, the rate and the world frame
@@ -43,6 +50,11 @@ private:
   bool have_cable_out_ = false;
   double cable_out_ = 0.0, cable_out_stamp_ = 0.0;  // [m], [s]
   bool drives_winch_ = false;                       // ~actuator winch or both
+  // The winch's feed-forward: the depth setpoint still to be planned (NaN: none), the call under way (on
+  // its own thread, so the ticks go on) and when to ask again after tow_sim_node did not answer.
+  double plan_depth_ = std::numeric_limits<double>::quiet_NaN();  // [m]
+  std::future<std::pair<bool, tow_sim::PlanCableOut::Response>> plan_call_;
+  double plan_depth_asked_ = 0.0, plan_retry_at_ = 0.0;  // [m], [s]
   ros::Publisher fin_pub_, winch_pub_;
   ros::Timer timer_;
 };
