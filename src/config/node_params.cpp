@@ -29,10 +29,14 @@ const ParamTable<NodeParams>& nodeParams()
           .number("max_command_lag", &N::max_command_lag, "s", 0.001, 10.0, kClosed,
                   "the adaptive implicit stepper's steps are capped at this (and numerics.max_step): a "
                   "command from another node acts from the end of the step under way")
+          .number("max_tick_wall", &N::max_tick_wall, "s", 0.001, 10.0, kClosed,
+                  "a physics tick integrates at most 0.5 s of simulated time and, judged by the previous "
+                  "ticks' cost, about this much wall time (at least one step): callbacks never wait long")
           .number("max_extrapolation", &N::max_extrapolation, "s", 0.0, 60.0, kClosed,
                   "past the newest odometry; then the simulation holds")
           .number("max_ship_speed", &N::max_ship_speed, "m/s", 0.0, 1000.0, kOpen,
-                  "odometry faster than this, or jumping farther, is rejected")
+                  "odometry faster than this, or jumping farther, is rejected; a velocity taken from the "
+                  "positions (the twist contradicted) is clamped to it")
           .integer("reacquire_after", &N::reacquire_after, "messages", 2, 1000,
                    "odometry refused as a jump this many times in a row, consistent among itself, is the ship: "
                    "the cable is laid out again there (a GPS's (0, 0, 0) before its fix)")

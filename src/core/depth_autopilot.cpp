@@ -74,6 +74,17 @@ DepthAutopilot::DepthAutopilot(const DepthAutopilotParams& params)
 {
 }
 
+void DepthAutopilot::setTuning(const DepthAutopilotParams& params, const std::string& prefix)
+{
+  DepthAutopilotParams p = params;
+  p.actuator = p_.actuator;
+  p.track_spacing = p_.track_spacing;
+  p.track_length = p_.track_length;
+  p.validate(prefix);
+  p_ = p;
+  integral_ = std::clamp(integral_, -p_.max_elevator, p_.max_elevator);
+}
+
 void DepthAutopilot::setSetpoint(double depth)
 {
   requireInRange("depth setpoint", depth, 0.0, p_.max_depth, "[m] (positive down)");

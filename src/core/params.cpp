@@ -128,10 +128,10 @@ void validate(const CableParams& c, const std::string& p)
 {
   validateParams(cableParams(), c, p);
   if (c.safe_working_load && c.breaking_load)
-    requireInRange(p + ".breaking_load", *c.breaking_load, *c.safe_working_load, 1e9,
+    requireInRange(paramName(p, "breaking_load"), *c.breaking_load, *c.safe_working_load, 1e9,
                    "[N] (at least safe_working_load)");
   if (!c.elastic() && c.axial_damping != 0.0)
-    requireInRange(p + ".axial_damping", c.axial_damping, 0.0, 0.0, "[N s] (0 unless axial_stiffness is set)");
+    requireInRange(paramName(p, "axial_damping"), c.axial_damping, 0.0, 0.0, "[N s] (0 unless axial_stiffness is set)");
 }
 
 void validate(const EndElementParams& e, const std::string& p)

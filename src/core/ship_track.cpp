@@ -11,11 +11,13 @@ namespace
 constexpr double kPi = 3.14159265358979323846;
 }  // namespace
 
-ShipTrack::ShipTrack(double max_extrapolation, size_t capacity)
-    : max_extrapolation_(max_extrapolation), capacity_(std::max<size_t>(capacity, 3))
+ShipTrack::ShipTrack(double max_extrapolation, size_t capacity, double max_speed)
+    : max_extrapolation_(max_extrapolation), capacity_(std::max<size_t>(capacity, 3)), max_speed_(max_speed)
 {
   if (!(max_extrapolation >= 0.0 && max_extrapolation <= 60.0))
     throw std::invalid_argument("max_extrapolation must be in [0, 60] [s]");
+  if (!(max_speed > 0.0))
+    throw std::invalid_argument("max_speed must be > 0 [m/s]");
 }
 
 double ShipTrack::newestTime() const
@@ -39,9 +41,17 @@ void ShipTrack::updateVelocity(size_t i)
   // or stale twist, or a burst of stale positions, would otherwise make the interpolant swing back
   // and forth between samples with violent accelerations.
   Sample& s = samples_[i];
-  const Eigen::Vector3d from_positions = differenceVelocity(i);
+  Eigen::Vector3d from_positions = differenceVelocity(i);
   const double tolerance = kVelocityTolerance + kVelocityRelativeTolerance * from_positions.norm();
-  s.v = (s.v_reported - from_positions).norm() <= tolerance ? s.v_reported : from_positions;
+  if ((s.v_reported - from_positions).norm() <= tolerance)
+  {
+    s.v = s.v_reported;
+    return;
+  }
+  const double speed = from_positions.norm();
+  if (speed > max_speed_)
+    from_positions *= max_speed_ / speed;  // jitter between close samples: no faster than a ship goes
+  s.v = from_positions;
 }
 
 void ShipTrack::updateAcceleration(size_t i)
@@ -128,7 +138,10 @@ ShipEndState ShipTrack::operator()(double t) const
   return out;
 }
 
-ShipHistory::ShipHistory(double max_extrapolation, size_t capacity) : track_(max_extrapolation, capacity) {}
+ShipHistory::ShipHistory(double max_extrapolation, size_t capacity, double max_speed)
+    : track_(max_extrapolation, capacity, max_speed)
+{
+}
 
 bool ShipHistory::add(double t, const Eigen::Vector3d& tow_p_W, const Eigen::Vector3d& tow_v_W, const ShipPose& pose)
 {

@@ -17,6 +17,16 @@ std::shared_ptr<const Seabed> makeSeabed(const SeabedParams& params)
 }
 }  // namespace
 
+double tickTarget(double now, double wanted, double available, double step, double cost, double max_sim,
+                  double max_wall)
+{
+  double chunk = max_sim;
+  if (cost > 0.0)
+    chunk = std::min(chunk, max_wall / cost);
+  chunk = std::max(chunk, step > 0.0 ? step : 1e-3);
+  return std::min({ std::max(wanted, now + step), available, now + chunk });
+}
+
 TowRun::TowRun(const SimulationConfig& config, std::shared_ptr<ShipHistory> ship, const InitialShape& initial)
     : config_(config),
       vehicle_(std::make_shared<Vehicle>(config.vehicle, config.numerics)),

@@ -45,11 +45,65 @@ DepthAutopilotNode::DepthAutopilotNode(ros::NodeHandle nh, ros::NodeHandle pnh)
              node_params_.controller.max_payout_rate, plan.c_str());
   }
   timer_ = nh_.createTimer(ros::Duration(1.0 / node_params_.rate), &DepthAutopilotNode::tick, this);
+  reconfigure_ = std::make_unique<dynamic_reconfigure::Server<tow_sim::DepthAutopilotConfig>>(reconfigure_mutex_, pnh_);
+  reconfigure_->updateConfig(liveConfig());  // the start-up values, not the generator's defaults
+  reconfigure_->setCallback([this](tow_sim::DepthAutopilotConfig& c, uint32_t) { onReconfigure(c); });
   ROS_INFO(
       "depth_autopilot: kp %.3g rad/m, ki %.3g rad/(m s), kd %.3g rad/(m/s), elevator within +-%.3f rad; "
       "track keeping %s; fins/command at %.1f Hz",
       node_params_.controller.kp, node_params_.controller.ki, node_params_.controller.kd,
       node_params_.controller.max_elevator, node_params_.controller.track_keeping ? "on" : "off", node_params_.rate);
+}
+
+tow_sim::DepthAutopilotConfig DepthAutopilotNode::liveConfig() const
+{
+  const DepthAutopilotParams& p = autopilot_.params();
+  tow_sim::DepthAutopilotConfig c;
+  c.kp = p.kp;
+  c.ki = p.ki;
+  c.kd = p.kd;
+  c.max_elevator = p.max_elevator;
+  c.track_keeping = p.track_keeping;
+  c.rudder_kp = p.rudder_kp;
+  c.rudder_kd = p.rudder_kd;
+  c.max_rudder = p.max_rudder;
+  c.winch_kp = p.winch_kp;
+  c.winch_ki = p.winch_ki;
+  c.winch_time_constant = p.winch_time_constant;
+  c.max_payout_rate = p.max_payout_rate;
+  return c;
+}
+
+void DepthAutopilotNode::onReconfigure(tow_sim::DepthAutopilotConfig& c)
+{
+  DepthAutopilotParams p = autopilot_.params();
+  p.kp = c.kp;
+  p.ki = c.ki;
+  p.kd = c.kd;
+  p.max_elevator = c.max_elevator;
+  p.track_keeping = c.track_keeping;
+  p.rudder_kp = c.rudder_kp;
+  p.rudder_kd = c.rudder_kd;
+  p.max_rudder = c.max_rudder;
+  p.winch_kp = c.winch_kp;
+  p.winch_ki = c.winch_ki;
+  p.winch_time_constant = c.winch_time_constant;
+  p.max_payout_rate = c.max_payout_rate;
+  try
+  {
+    autopilot_.setTuning(p, pnh_.getNamespace() + "/");
+    node_params_.controller = autopilot_.params();
+    ROS_INFO(
+        "depth_autopilot: reconfigured: kp %g, ki %g, kd %g, max_elevator %g; track keeping %s; winch kp %g, "
+        "ki %g, time constant %g s, max payout rate %g m/s",
+        p.kp, p.ki, p.kd, p.max_elevator, p.track_keeping ? "on" : "off", p.winch_kp, p.winch_ki, p.winch_time_constant,
+        p.max_payout_rate);
+  }
+  catch (const std::invalid_argument& e)
+  {
+    ROS_ERROR("depth_autopilot: reconfigure refused: %s; every setting keeps its previous value", e.what());
+    c = liveConfig();
+  }
 }
 
 bool DepthAutopilotNode::frameOk(const nav_msgs::Odometry& msg, const char* topic)

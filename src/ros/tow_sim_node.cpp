@@ -73,7 +73,7 @@ TowSimNode::TowSimNode(ros::NodeHandle nh, ros::NodeHandle pnh)
       pnh_(pnh),
       params_(ros_conv::readPrivateParams<NodeParams>(pnh, nodeParams(), validate)),
       config_(readConfig(pnh, params_)),
-      ship_(std::make_shared<ShipHistory>(params_.max_extrapolation, kTrackCapacity)),
+      ship_(std::make_shared<ShipHistory>(params_.max_extrapolation, kTrackCapacity, params_.max_ship_speed)),
       run_(config_, ship_, initialShape(params_)),
       whole_steps_(isImplicit(config_.numerics.stepper)),
       reacquisition_(params_.reacquire_after)
@@ -104,6 +104,7 @@ TowSimNode::TowSimNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   reset_srv_ = pnh_.advertiseService("reset", &TowSimNode::onReset, this);
   pause_srv_ = pnh_.advertiseService("set_paused", &TowSimNode::onSetPaused, this);
   plan_srv_ = pnh_.advertiseService("plan_cable_out", &TowSimNode::onPlanCableOut, this);
+  setUpReconfigure();
   physics_timer_ = nh_.createTimer(ros::Duration(1.0 / params_.physics_rate), [this](const ros::TimerEvent& e)
                                    { guarded("physics tick", [&] { physicsTick(e); }); });
   publish_timer_ = nh_.createTimer(ros::Duration(1.0 / params_.publish_rate), [this](const ros::TimerEvent& e)
@@ -370,14 +371,14 @@ void TowSimNode::physicsTick(const ros::TimerEvent&)
   if (holding_)
     ROS_WARN_THROTTLE(5.0, "tow_sim: ship odometry is %.1f s old: holding the simulation until it resumes",
                       wanted - ship_->newestTime());
-  // Bounded work per tick, so callbacks are never starved; the lag shows in diagnostics. An implicit
-  // stepper goes on in its own steps, up to one past the clock (its outputs are interpolated).
+  // Bounded work per tick (0.5 s simulated, about max_tick_wall of wall time), so callbacks are never starved;
+  // the lag shows in diagnostics. An implicit stepper goes on in its own steps, up to one past the clock
+  // (its outputs are interpolated).
   lag_ = wanted - run_.time();
   if (wanted <= run_.time())
     return;
   const double step = whole_steps_ ? run_.nextStep() : 0.0;
-  const double target =
-      std::min({ std::max(wanted, run_.time() + step), available, run_.time() + std::max(0.5, step) });
+  const double target = tickTarget(run_.time(), wanted, available, step, tick_cost_, 0.5, params_.max_tick_wall);
   if (target <= run_.time())
     return;
   driveWinch();
@@ -407,6 +408,8 @@ void TowSimNode::integrateTo(double target)
   physics_wall_ += wall;
   if (wall > 0.0)
     realtime_factor_ = 0.9 * realtime_factor_ + 0.1 * ((run_.time() - t0) / wall);
+  if (run_.time() > t0)
+    tick_cost_ = wall / (run_.time() - t0);  // the next tick's measure
 }
 
 void TowSimNode::recordStep()
@@ -509,6 +512,7 @@ void TowSimNode::publishTick(const ros::TimerEvent&)
 void TowSimNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
 {
   using diagnostic_msgs::DiagnosticStatus;
+  reportCurrent();
   const bool recent_restart =
       !restart_walls_.empty() && ros::WallTime::now().toSec() - restart_walls_.back() < kRestartWindow;
   if (diverging_)

@@ -155,6 +155,53 @@ TEST(DepthAutopilot, AntiWindupBoundsTheIntegralWhileSaturatedAndAvoidsOvershoot
   EXPECT_LT(ours.overshoot, 0.3);
 }
 
+// Live tuning (dynamic_reconfigure's path): new gains act on the next command by the law written out here,
+// the integral is kept (within a smaller max_elevator), a bad value changes nothing and is named.
+TEST(DepthAutopilot, TuningWhileRunningKeepsTheStateAndRefusesBadValues)
+{
+  DepthAutopilot ap(noTrack());
+  ap.setSetpoint(100.0);
+  double integral = 0.0;
+  for (int i = 0; i <= 100; ++i)  // 100 s at 0.5 m too shallow: the integral collects -ki e t (unsaturated)
+  {
+    ap.addVehicle(at(i, 99.5));
+    integral = ap.update(i).integral;
+  }
+  EXPECT_NEAR(integral, -0.0025 * 0.5 * 100.0, 1e-12);
+  DepthAutopilotParams tuned = noTrack();
+  tuned.kp = 0.05;
+  tuned.kd = 0.4;
+  tuned.max_elevator = 0.3;
+  tuned.actuator = DepthAutopilotParams::Actuator::kWinch;  // structural: kept as constructed
+  ap.setTuning(tuned);
+  EXPECT_EQ(ap.params().actuator, DepthAutopilotParams::Actuator::kElevator);
+  ap.addVehicle(at(101.0, 99.5, -0.25));  // sinking at 0.25 m/s
+  const AutopilotCommand c = ap.update(101.0);
+  const double expected_integral = integral - 0.0025 * 0.5;
+  EXPECT_NEAR(c.integral, expected_integral, 1e-12);
+  EXPECT_NEAR(c.elevator, -0.05 * 0.5 - 0.4 * -0.25 + expected_integral, 1e-12);
+  EXPECT_FALSE(c.elevator_saturated);
+
+  tuned.max_elevator = 0.1;  // below the integral's 0.126 rad: clamped
+  ap.setTuning(tuned);
+  ap.addVehicle(at(102.0, 100.0));
+  EXPECT_NEAR(ap.update(102.0).integral, -0.1, 1e-12);
+
+  DepthAutopilotParams bad = tuned;
+  bad.kp = -1.0;
+  try
+  {
+    ap.setTuning(bad, "/depth_autopilot/");
+    FAIL() << "kp = -1 accepted";
+  }
+  catch (const std::invalid_argument& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("/depth_autopilot/kp = -1 is out of range"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(ap.params().kp, 0.05);
+  EXPECT_EQ(ap.params().max_elevator, 0.1);
+}
+
 TEST(DepthAutopilot, IntegratesOncePerMeasurementNotPerCall)
 {
   DepthAutopilot a(noTrack()), b(noTrack());

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "tow_sim/core/ship_track.h"
 
@@ -77,6 +78,30 @@ TEST(ShipTrack, ZeroOrStaleTwistDoesNotMakeTheTrackSwing)
     burst.add(1.0 + 0.01 * i, Eigen::Vector3d(1.9, 0, 0), Eigen::Vector3d(2, 0, 0));
   for (double t = 1.0; t < 1.49; t += 0.001)
     EXPECT_LT(burst(t).v_W.norm(), 2.5) << t;
+}
+
+TEST(ShipTrack, VelocitiesFromJitteryPositionsAreClampedToTheMaximumSpeed)
+{
+  // 2 m/s at 100 Hz with +-0.2 m of position noise (two samples up, two down) and no twist: the velocities
+  // the positions give (central differences) reach 0.4 m / 0.02 s = 20 m/s across; with max_speed 5 m/s none
+  // at a sample exceeds it.
+  ShipTrack clamped(1.0, 400, 5.0), free(1.0, 400);
+  for (int i = 0; i <= 200; ++i)
+  {
+    const Eigen::Vector3d p(0.02 * i, ((i / 2) % 2 ? 0.2 : -0.2), 0.0);
+    clamped.add(0.01 * i, p, Eigen::Vector3d::Zero());
+    free.add(0.01 * i, p, Eigen::Vector3d::Zero());
+  }
+  double fastest = 0.0, fastest_free = 0.0;
+  for (int i = 1; i < 200; ++i)
+  {
+    fastest = std::max(fastest, clamped(0.01 * i).v_W.norm());
+    fastest_free = std::max(fastest_free, free(0.01 * i).v_W.norm());
+  }
+  EXPECT_LE(fastest, 5.0 + 1e-12);
+  EXPECT_GT(fastest, 4.9);        // clamped, not zeroed
+  EXPECT_GT(fastest_free, 15.0);  // and the case matters
+  EXPECT_THROW(ShipTrack(1.0, 400, 0.0), std::invalid_argument);
 }
 
 TEST(ShipTrack, DroppingThePastLeavesTheTrackFromThenOnUnchanged)

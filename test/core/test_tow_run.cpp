@@ -112,6 +112,21 @@ TEST(TowRun, RefusesATargetThatIsNotFiniteOrInThePastAndOutputsBeforeTheStart)
 }
 
 // The node publishes between whole steps of the implicit stepper by interpolating two snapshots.
+// The node's physics tick (tickTarget) by hand: 0.5 s of simulated time at most, about max_wall of wall
+// time at the measured cost, at least one step, never past what the odometry allows.
+TEST(TowRun, ATickIsBoundedInSimulatedAndWallTime)
+{
+  using tow_sim::tickTarget;
+  EXPECT_DOUBLE_EQ(tickTarget(10.0, 12.0, 20.0, 0.0, 0.0, 0.5, 0.05), 10.5);    // cost unknown: 0.5 s
+  EXPECT_DOUBLE_EQ(tickTarget(10.0, 10.2, 20.0, 0.0, 0.0, 0.5, 0.05), 10.2);    // the clock first
+  EXPECT_DOUBLE_EQ(tickTarget(10.0, 12.0, 10.3, 0.0, 0.0, 0.5, 0.05), 10.3);    // the odometry's end
+  EXPECT_DOUBLE_EQ(tickTarget(10.0, 12.0, 20.0, 0.0, 0.5, 0.5, 0.05), 10.1);    // 0.5 wall s per s: 0.1 s
+  EXPECT_DOUBLE_EQ(tickTarget(10.0, 12.0, 20.0, 0.0, 1e3, 0.5, 0.05), 10.001);  // hopeless: 1 ms
+  EXPECT_DOUBLE_EQ(tickTarget(10.0, 12.0, 20.0, 0.2, 1e3, 0.5, 0.05), 10.2);    // whole steps: one
+  EXPECT_DOUBLE_EQ(tickTarget(10.0, 10.05, 20.0, 0.2, 0.0, 0.5, 0.05), 10.2);   // one step past the clock
+  EXPECT_DOUBLE_EQ(tickTarget(10.0, 12.0, 20.0, 0.0, 1e-3, 0.5, 0.05), 10.5);   // cheap: 0.5 s still
+}
+
 TEST(TowRun, SnapshotsInterpolateBetweenTwoTimes)
 {
   SimulationConfig c = smallConfig();

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <future>
 #include <limits>
 #include <memory>
 #include <mutex>
@@ -129,6 +130,11 @@ public:
   {
     std::lock_guard<std::mutex> lock(mutex_);
     return -vehicle_.pose.pose.position.z;
+  }
+  double vehicleY()  // [m] world
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return vehicle_.pose.pose.position.y;
   }
   tow_sim::FinCommand fins()
   {
@@ -266,11 +272,11 @@ TEST(DepthAutopilotNode, TheWinchReachesADeeperSetpointWithTheElevatorCentred)
   ros::Subscriber winch_sub = loop->nh_.subscribe<std_msgs::Float64>(
       "/winch/command", 20, [&](const std_msgs::Float64::ConstPtr& m) { payout = std::max(payout, m->data); });
   ros::Subscriber state_sub = loop->nh_.subscribe<tow_sim::CableState>("/cable/state", 20,
-                                                                      [&](const tow_sim::CableState::ConstPtr& m)
-                                                                      {
-                                                                        std::lock_guard<std::mutex> lock(mutex);
-                                                                        cable_out = m->cable_length;
-                                                                      });
+                                                                       [&](const tow_sim::CableState::ConstPtr& m)
+                                                                       {
+                                                                         std::lock_guard<std::mutex> lock(mutex);
+                                                                         cable_out = m->cable_length;
+                                                                       });
   loop->run(5.0);
   const double first = loop->depth();
   const double target = first + 20.0;
@@ -358,6 +364,65 @@ TEST(DepthAutopilotNode, BadParameterExitsNamingIt)
 }
 
 }  // namespace
+
+// `rosrun dynamic_reconfigure dynparam ARGS` (as README.md documents it), its output; the clock goes on
+// meanwhile (dynparam waits on it with use_sim_time).
+std::string dynparam(const std::string& args)
+{
+  auto call = std::async(std::launch::async,
+                         [args]
+                         {
+                           std::string out;
+                           FILE* pipe = popen(("rosrun dynamic_reconfigure dynparam " + args + " 2>&1").c_str(), "r");
+                           char buffer[512];
+                           while (pipe && fgets(buffer, sizeof(buffer), pipe))
+                             out += buffer;
+                           if (pipe)
+                             pclose(pipe);
+                           return out;
+                         });
+  while (call.wait_for(std::chrono::milliseconds(20)) != std::future_status::ready)
+    loop->step();
+  return call.get();
+}
+
+// dynamic_reconfigure: a cross current set on tow_sim_node moves the vehicle to the side, a smaller kp on
+// depth_autopilot_node gives a proportionally smaller elevator for the same depth error, and out-of-range
+// values are refused with the old ones kept (the configuration read back).
+TEST(DepthAutopilotNode, DynparamChangesTheCurrentAndTheGainsAndRefusesBadValues)
+{
+  loop->run(5.0);
+  const double before = loop->vehicleY();
+  std::printf("%s", dynparam("set /tow_sim current_y 0.5").c_str());
+  loop->run(60.0);
+  const double moved = loop->vehicleY() - before;
+  std::string config = dynparam("get /tow_sim");
+  EXPECT_NE(config.find("'current_y': 0.5"), std::string::npos) << config;
+  std::printf("%s", dynparam("set /tow_sim current_y 25").c_str());  // out of range: [-20, 20]
+  config = dynparam("get /tow_sim");
+  EXPECT_NE(config.find("'current_y': 0.5"), std::string::npos) << config;
+  std::printf("%s", dynparam("set /tow_sim current_y 0").c_str());
+  std::printf("a 0.5 m/s current to +y moved the vehicle %.2f m to +y in 60 s (the ship heading -x)\n", moved);
+  EXPECT_GT(moved, 5.0);
+
+  // kp 0.1 -> 0.02 rad/m: a setpoint 5 m deeper changes the elevator by about -0.02 * 5 = -0.1 rad at once
+  // (with the default kp: -0.5, saturated at -0.436 rad).
+  loop->run(60.0);
+  std::printf("%s", dynparam("set /depth_autopilot kp 0.02").c_str());
+  std::printf("%s", dynparam("set /depth_autopilot kp -1").c_str());  // out of range: [0, 10]
+  config = dynparam("get /depth_autopilot");
+  EXPECT_NE(config.find("'kp': 0.02"), std::string::npos) << config;
+  const double elevator0 = loop->fins().elevator;
+  const double depth0 = loop->depth();
+  loop->setpoint(depth0 + 5.0);
+  loop->run(0.3);
+  const double change = loop->fins().elevator - elevator0;
+  std::printf("kp 0.02: the elevator changed by %.4f rad for a 5 m step (kp e = 0.1 rad)\n", change);
+  EXPECT_NEAR(change, -0.1, 0.03);
+  std::printf("%s", dynparam("set /depth_autopilot kp 0.1").c_str());
+  loop->setpoint(depth0);
+  loop->run(30.0);
+}
 
 int main(int argc, char** argv)
 {

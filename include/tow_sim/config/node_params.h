@@ -20,8 +20,10 @@ struct NodeParams
   double publish_rate = 10.0;                                      // [Hz] state, markers, odometry, tf
   double odom_delay = 0.2;                                         // [s] the simulation runs this far behind the clock
   double max_command_lag = 0.1;    // [s] cap on an implicit step: commands act within it
+  double max_tick_wall = 0.05;     // [s] wall time a physics tick aims to stay within (at least one step)
   double max_extrapolation = 1.0;  // [s] past the newest odometry, then hold
-  double max_ship_speed = 25.0;    // [m/s] odometry implying a faster jump is rejected
+  double max_ship_speed = 25.0;    // [m/s] odometry implying a faster jump is rejected; velocities from positions
+                                   // are clamped to it
   int reacquire_after = 5;         // [messages] consistent ones away from the track in a row re-acquire the ship
   double max_odom_age = 10.0;      // [s] odometry stamped earlier than now - this is rejected
   std::string initial_shape = "equilibrium";  // equilibrium | line | hanging

@@ -140,6 +140,12 @@ public:
   bool hasSetpoint() const { return has_setpoint_; }
   double setpoint() const { return setpoint_; }
 
+  // New gains and limits while running (dynamic_reconfigure): validated as at construction (throws
+  // std::invalid_argument naming `prefix + key`; nothing changes then); the integrals, measurements, setpoint
+  // and track are kept (the elevator's integral within the new max_elevator). The actuator and the track's
+  // spacing and length stay as constructed.
+  void setTuning(const DepthAutopilotParams& params, const std::string& prefix = "");
+
   // The planner's steady cable out [m] for the present setpoint, the winch's feed-forward (> 0, finite;
   // else std::invalid_argument). NaN clears it: the cable out at the next measurement stands in.
   void setCableOutFeedForward(double cable_out);

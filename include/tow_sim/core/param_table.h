@@ -262,6 +262,14 @@ ParamTable<S>& ParamTable<S>::nest(const std::string& prefix, T S::*member, cons
 void requireInRange(const std::string& name, double value, double lo, double hi, const char* unit,
                     bool lo_open = false);
 
+// A key's full name under a prefix: "<prefix>.<key>", or "<prefix><key>" when the prefix is empty or ends
+// in '.' or '/' (a ROS namespace).
+inline std::string paramName(const std::string& prefix, const std::string& key)
+{
+  const bool joined = prefix.empty() || prefix.back() == '.' || prefix.back() == '/';
+  return prefix + (joined ? "" : ".") + key;
+}
+
 // Checks every number, integer and vector component of `s` against its range; throws
 // std::invalid_argument naming "<prefix>.<key>", the value and the range.
 template <class S>
@@ -269,8 +277,7 @@ void validateParams(const ParamTable<S>& table, const S& s, const std::string& p
 {
   for (const ParamSpec<S>& p : table.specs())
   {
-    const bool joined = !prefix.empty() && (prefix.back() == '.' || prefix.back() == '/');
-    const std::string name = prefix + (joined || prefix.empty() ? "" : ".") + p.key;
+    const std::string name = paramName(prefix, p.key);
     const std::string unit = "[" + p.unit + "]" + (p.bounds ? " (" + p.range_text + ")" : "");
     double lo = p.lo, hi = p.hi;
     if (p.bounds)

@@ -2,12 +2,14 @@
 // velocity and acceleration (physics.md §7): quintic Hermite pieces between samples, the knot
 // accelerations taken from the velocities on either side. A reported velocity that the positions
 // around it contradict (by more than 0.5 m/s + 20 %) is replaced by the one the positions give, so a
-// zero or stale twist cannot make the track swing. Past the newest sample it extrapolates with
+// zero or stale twist cannot make the track swing; such a velocity from jittery positions is clamped to
+// `max_speed` (the node's max_ship_speed). Past the newest sample it extrapolates with
 // constant acceleration for at most `max_extrapolation`, then holds that state.
 #pragma once
 
 #include <Eigen/Core>
 #include <deque>
+#include <limits>
 
 #include "tow_sim/core/chain_model.h"
 
@@ -16,7 +18,9 @@ namespace tow_sim
 class ShipTrack
 {
 public:
-  explicit ShipTrack(double max_extrapolation = 1.0, size_t capacity = 400);
+  // max_speed [m/s] bounds a velocity taken from the positions (> 0; infinity: none).
+  explicit ShipTrack(double max_extrapolation = 1.0, size_t capacity = 400,
+                     double max_speed = std::numeric_limits<double>::infinity());
 
   // Adds a sample of the tow point at time t [s]: position [m] and velocity [m/s], world. Returns false
   // and keeps the track unchanged unless t is later than the newest sample and all values are finite.
@@ -46,6 +50,7 @@ private:
 
   double max_extrapolation_;
   size_t capacity_;
+  double max_speed_;
   std::deque<Sample> samples_;
 };
 
@@ -65,7 +70,8 @@ struct ShipPose
 class ShipHistory
 {
 public:
-  explicit ShipHistory(double max_extrapolation = 1.0, size_t capacity = 400);
+  explicit ShipHistory(double max_extrapolation = 1.0, size_t capacity = 400,
+                       double max_speed = std::numeric_limits<double>::infinity());
 
   // Adds a sample at time t [s]: the tow point's position [m] and velocity [m/s] (world) and the ship's
   // pose. Returns false and changes nothing unless the ShipTrack takes it (later than the newest, finite).

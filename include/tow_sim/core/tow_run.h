@@ -87,6 +87,13 @@ struct TowSnapshot
 // larger of the two. (The node publishes between whole steps of the implicit stepper this way.)
 TowSnapshot interpolate(const TowSnapshot& a, const TowSnapshot& b, double t);
 
+// The time a real-time driver's tick integrates to (tow_sim_node's physics tick): toward `wanted` [s], not past
+// `available` [s], at most max_sim [s] of simulated time and about max_wall [s] of wall time at `cost` wall
+// seconds per simulated second (0: not known yet), yet at least one step `step` [s] of a whole-step
+// stepper (0: none; then at least 1 ms) and never past `wanted` by more than that step.
+double tickTarget(double now, double wanted, double available, double step, double cost, double max_sim,
+                  double max_wall);
+
 class TowRun
 {
 public:

@@ -4,16 +4,19 @@
 // README.md ("depth_autopilot_node").
 #pragma once
 
+#include <dynamic_reconfigure/server.h>
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
 #include <std_msgs/Float64.h>
 
 #include <future>
 #include <limits>
-#include <utility>
+#include <memory>
 #include <string>
+#include <utility>
 
 #include "tow_sim/CableState.h"
+#include "tow_sim/DepthAutopilotConfig.h"
 #include "tow_sim/PlanCableOut.h"
 #include "tow_sim/config/node_params.h"
 #include "tow_sim/core/depth_autopilot.h"
@@ -36,6 +39,10 @@ private:
   void tick(const ros::TimerEvent& event);
   bool frameOk(const nav_msgs::Odometry& msg, const char* topic);
   void askForPlan(double now);
+  // Live gains and limits (cfg/DepthAutopilot.cfg), validated like the start-up parameters; a refused
+  // change is answered with the old values.
+  tow_sim::DepthAutopilotConfig liveConfig() const;
+  void onReconfigure(tow_sim::DepthAutopilotConfig& c);
   void takePlan(double now);
 
   ros::NodeHandle nh_, pnh_;
@@ -57,6 +64,8 @@ private:
   double plan_depth_asked_ = 0.0, plan_retry_at_ = 0.0;  // [m], [s]
   ros::Publisher fin_pub_, winch_pub_;
   ros::Timer timer_;
+  boost::recursive_mutex reconfigure_mutex_;
+  std::unique_ptr<dynamic_reconfigure::Server<tow_sim::DepthAutopilotConfig>> reconfigure_;
 };
 
 }  // namespace tow_sim

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <diagnostic_updater/diagnostic_updater.h>
+#include <dynamic_reconfigure/server.h>
 #include <geometry_msgs/Vector3Stamped.h>
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
@@ -23,6 +24,7 @@
 #include "tow_sim/CurrentProfile.h"
 #include "tow_sim/FinCommand.h"
 #include "tow_sim/PlanCableOut.h"
+#include "tow_sim/TowSimConfig.h"
 #include "tow_sim/config/config.h"
 #include "tow_sim/config/node_params.h"
 #include "tow_sim/core/odometry_check.h"
@@ -51,6 +53,14 @@ private:
   // and current; with `execute`, the winch goes to the planned cable out (driveWinch, each physics tick).
   bool onPlanCableOut(tow_sim::PlanCableOut::Request& req, tow_sim::PlanCableOut::Response& res);
   void driveWinch();
+  // Live settings (tow_sim_node_reconfigure.cpp, cfg/TowSim.cfg): validated like the start-up parameters;
+  // a refused change is answered with the old values (c is set back to them).
+  void setUpReconfigure();
+  tow_sim::TowSimConfig liveConfig() const;
+  void onReconfigure(tow_sim::TowSimConfig& c);
+  // The current topic changed the current: the server's configuration follows (at the diagnostics' 1 Hz,
+  // as each update writes every setting to the parameter server).
+  void reportCurrent();
   void physicsTick(const ros::TimerEvent& event);
   void publishTick(const ros::TimerEvent& event);
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
@@ -103,6 +113,7 @@ private:
 
   // Diagnostics.
   double realtime_factor_ = 0.0;
+  double tick_cost_ = 0.0;  // [s/s] wall seconds per simulated second of the last physics tick
   double lag_ = 0.0;
   double physics_wall_ = 0.0;        // [s] wall time spent integrating since the last diagnostics report
   uint64_t physics_steps_ = 0;       // accepted steps since the last diagnostics report
@@ -127,6 +138,9 @@ private:
   ros::Timer physics_timer_, publish_timer_, status_timer_;
   tf2_ros::TransformBroadcaster tf_broadcaster_;
   diagnostic_updater::Updater diagnostics_;
+  boost::recursive_mutex reconfigure_mutex_;
+  std::unique_ptr<dynamic_reconfigure::Server<tow_sim::TowSimConfig>> reconfigure_;
+  Eigen::Vector3d reported_current_ = Eigen::Vector3d::Constant(std::nan(""));  // [m/s] in the server's config
 };
 
 }  // namespace tow_sim
