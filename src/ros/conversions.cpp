@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <sstream>
 
+#include "tow_sim/scenario/towfish_urdf.h"
+
 namespace tow_sim
 {
 namespace ros_conv
@@ -165,6 +167,16 @@ geometry_msgs::TransformStamped toVehicleTransform(const TowSnapshot& s, const s
   tf.transform.translation = toVector3(s.vehicle.p_cg_W);
   tf.transform.rotation = toQuaternion(s.attitude);
   return tf;
+}
+
+sensor_msgs::JointState toJointState(const TowSnapshot& s, const std_msgs::Header& header,
+                                     const std::string& vehicle_frame)
+{
+  sensor_msgs::JointState joints;
+  joints.header.stamp = header.stamp;  // no frame: joint states have none
+  joints.name = { rudderJointName(vehicle_frame), elevatorJointName(vehicle_frame) };
+  joints.position = { s.vehicle.rudder, s.vehicle.elevator };
+  return joints;
 }
 
 tow_sim::FinLoads toFinLoads(const TowSnapshot& s, const std_msgs::Header& header, const std::string& vehicle_frame)

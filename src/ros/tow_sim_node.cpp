@@ -101,6 +101,7 @@ TowSimNode::TowSimNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   fin_loads_pub_ = nh_.advertise<tow_sim::FinLoads>("vehicle/fin_loads", 10);
   ship_force_pub_ = nh_.advertise<geometry_msgs::WrenchStamped>("ship/tow_force", 10);
   vehicle_force_pub_ = nh_.advertise<geometry_msgs::WrenchStamped>("vehicle/tow_force", 10);
+  joint_state_pub_ = nh_.advertise<sensor_msgs::JointState>("joint_states", 10);
   reset_srv_ = pnh_.advertiseService("reset", &TowSimNode::onReset, this);
   pause_srv_ = pnh_.advertiseService("set_paused", &TowSimNode::onSetPaused, this);
   plan_srv_ = pnh_.advertiseService("plan_cable_out", &TowSimNode::onPlanCableOut, this);
@@ -499,6 +500,7 @@ void TowSimNode::publishTick(const ros::TimerEvent&)
   fin_loads_pub_.publish(ros_conv::toFinLoads(snapshot, header, params_.vehicle_frame));
   ship_force_pub_.publish(ros_conv::toShipTowForce(snapshot, header));
   vehicle_force_pub_.publish(ros_conv::toVehicleTowForce(snapshot, header, params_.vehicle_frame));
+  joint_state_pub_.publish(ros_conv::toJointState(snapshot, header, params_.vehicle_frame));
   if (ship_trail_)
   {
     ship_trail_->add(snapshot.t, Eigen::Vector3d(snapshot.ship.x, snapshot.ship.y, 0.0));

@@ -9,6 +9,7 @@
 #include <geometry_msgs/Vector3.h>
 #include <geometry_msgs/WrenchStamped.h>
 #include <nav_msgs/Odometry.h>
+#include <sensor_msgs/JointState.h>
 #include <std_msgs/ColorRGBA.h>
 #include <xmlrpcpp/XmlRpcValue.h>
 #include <yaml-cpp/yaml.h>
@@ -75,6 +76,9 @@ tow_sim::FinLoads toFinLoads(const TowSnapshot& s, const std_msgs::Header& heade
 geometry_msgs::WrenchStamped toShipTowForce(const TowSnapshot& s, const std_msgs::Header& header);
 // The cable's pull on the vehicle, T_{nu+1} at the bail, in the vehicle frame (the CG, body axes as
 // published on tf): the force and its moment about the CG.
+// The fins' actual angles as joint states of the URDF towfish (tow_sim_urdf): rudder and elevator joints.
+sensor_msgs::JointState toJointState(const TowSnapshot& s, const std_msgs::Header& header,
+                                     const std::string& vehicle_frame);
 geometry_msgs::WrenchStamped toVehicleTowForce(const TowSnapshot& s, const std_msgs::Header& header,
                                                const std::string& vehicle_frame);
 

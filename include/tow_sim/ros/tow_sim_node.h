@@ -132,6 +132,7 @@ private:
   ros::Subscriber odom_sub_, fin_sub_, current_sub_, current_profile_sub_, winch_sub_;
   ros::Publisher state_pub_, marker_pub_, vehicle_odom_pub_, fin_loads_pub_;
   ros::Publisher ship_force_pub_, vehicle_force_pub_;  // the cable's forces on the ship and the vehicle
+  ros::Publisher joint_state_pub_;                     // the fin angles, for robot_state_publisher (URDF)
   ros::ServiceServer reset_srv_, pause_srv_, plan_srv_;
   std::optional<double> winch_target_;  // [m] a planned cable out the winch is going to (cleared on arrival
                                         // or by a winch/command)
