@@ -479,7 +479,9 @@ TEST(ElasticCable, ConvergesToTheRigidChainAsEAGrows)
     std::printf("EA %.0e N: largest difference from the rigid chain, shape %.2e, tensions %.2e\n", ea, shape, tension);
     EXPECT_LT(shape, 1e-3);
     if (ea > 1.0e7)
+    {
       EXPECT_LT(shape, std::max(0.2 * previous, 5e-6));
+    }
     EXPECT_LT(tension, ea < 1.0e8 ? 1e-3 : 2e-3);
     previous = shape;
   }
