@@ -79,7 +79,10 @@ const ParamTable<AutopilotNodeParams>& autopilotNodeParams()
                                          .text("plan_service", &A::plan_service, "a service name, or empty",
                                                "tow_sim_node's ~plan_cable_out (relative to the node's namespace), "
                                                "asked for the winch's feed-forward at each depth setpoint; empty: "
-                                               "none, the cable out at the first cable/state stands in");
+                                               "none, the cable out at the first cable/state stands in")
+                                         .boolean("setpoint_marker", &A::setpoint_marker,
+                                               "an interactive marker (~setpoint_marker) at the vehicle to drag "
+                                               "the depth setpoint in rviz");
   return table;
 }
 

@@ -45,6 +45,8 @@ DepthAutopilotNode::DepthAutopilotNode(ros::NodeHandle nh, ros::NodeHandle pnh)
              node_params_.controller.max_payout_rate, plan.c_str());
   }
   timer_ = nh_.createTimer(ros::Duration(1.0 / node_params_.rate), &DepthAutopilotNode::tick, this);
+  if (node_params_.setpoint_marker)
+    setUpMarker();
   reconfigure_ = std::make_unique<dynamic_reconfigure::Server<tow_sim::DepthAutopilotConfig>>(reconfigure_mutex_, pnh_);
   reconfigure_->updateConfig(liveConfig());  // the start-up values, not the generator's defaults
   reconfigure_->setCallback([this](tow_sim::DepthAutopilotConfig& c, uint32_t) { onReconfigure(c); });
@@ -181,25 +183,30 @@ void DepthAutopilotNode::onShipOdometry(const nav_msgs::Odometry::ConstPtr& msg)
 
 void DepthAutopilotNode::onSetpoint(const std_msgs::Float64::ConstPtr& msg)
 {
+  applyDepthSetpoint(msg->data, setpoint_sub_.getTopic() + ": data");
+}
+
+void DepthAutopilotNode::applyDepthSetpoint(double depth, const std::string& source)
+{
   try
   {
-    autopilot_.setSetpoint(msg->data);
+    autopilot_.setSetpoint(depth);
     announced_hold_ = true;
-    ROS_INFO("depth_autopilot: depth setpoint %.2f m", msg->data);
-    if (drives_winch_ && !node_params_.plan_service.empty() && msg->data > 0.0)
+    ROS_INFO("depth_autopilot: depth setpoint %.2f m (%s)", depth, source.c_str());
+    if (drives_winch_ && !node_params_.plan_service.empty() && depth > 0.0)
     {
-      plan_depth_ = msg->data;  // asked at the next tick
+      plan_depth_ = depth;  // asked at the next tick
       plan_retry_at_ = 0.0;
     }
   }
   catch (const std::invalid_argument&)
   {
     ROS_WARN_THROTTLE(2.0,
-                      "depth_autopilot: rejected %s: data = %g is out of range: must be a finite number in "
-                      "[0, %g] [m] (depth, positive down); keeping %.2f m",
-                      setpoint_sub_.getTopic().c_str(), msg->data, node_params_.controller.max_depth,
-                      autopilot_.setpoint());
+                      "depth_autopilot: rejected %s = %g is out of range: must be a finite number in [0, %g] [m] "
+                      "(depth, positive down); keeping %.2f m",
+                      source.c_str(), depth, node_params_.controller.max_depth, autopilot_.setpoint());
   }
+  moveMarker();  // to the setpoint in force (back, if refused)
 }
 
 void DepthAutopilotNode::onAltitudeSetpoint(const std_msgs::Float64::ConstPtr& msg)
@@ -296,6 +303,7 @@ void DepthAutopilotNode::tick(const ros::TimerEvent&)
       askForPlan(now);
     }
     const AutopilotCommand c = autopilot_.update(now);
+    followWithMarker();
     if (c.status == AutopilotCommand::Status::kWaiting)
       ROS_INFO_THROTTLE(10.0, "depth_autopilot: waiting for %s; fins centred", vehicle_sub_.getTopic().c_str());
     else if (c.status == AutopilotCommand::Status::kStale)

@@ -10,6 +10,8 @@
 #include <rosgraph_msgs/Clock.h>
 #include <std_msgs/Float64.h>
 #include <std_srvs/SetBool.h>
+#include <visualization_msgs/InteractiveMarkerFeedback.h>
+#include <visualization_msgs/InteractiveMarkerUpdate.h>
 
 #include <algorithm>
 #include <cmath>
@@ -422,6 +424,61 @@ TEST(DepthAutopilotNode, DynparamChangesTheCurrentAndTheGainsAndRefusesBadValues
   std::printf("%s", dynparam("set /depth_autopilot kp 0.1").c_str());
   loop->setpoint(depth0);
   loop->run(30.0);
+}
+
+// ~setpoint_marker: a drag in rviz ends with a MOUSE_UP feedback at the new pose; its depth becomes the
+// setpoint (the vehicle gets there), the marker stays there; a pose above the surface is refused and the
+// marker goes back to the setpoint in force.
+TEST(DepthAutopilotNode, TheSetpointMarkerSetsTheDepthWhereItIsLetGo)
+{
+  std::mutex mutex;
+  double marker_z = std::numeric_limits<double>::quiet_NaN();
+  ros::Subscriber updates = loop->nh_.subscribe<visualization_msgs::InteractiveMarkerUpdate>(
+      "/depth_autopilot/setpoint_marker/update", 20,
+      [&](const visualization_msgs::InteractiveMarkerUpdate::ConstPtr& m)
+      {
+        std::lock_guard<std::mutex> lock(mutex);
+        for (const auto& marker : m->markers)
+          if (marker.name == "depth_setpoint")
+            marker_z = marker.pose.position.z;
+        for (const auto& pose : m->poses)
+          if (pose.name == "depth_setpoint")
+            marker_z = pose.pose.position.z;
+      });
+  ros::Publisher feedback = loop->nh_.advertise<visualization_msgs::InteractiveMarkerFeedback>(
+      "/depth_autopilot/setpoint_marker/feedback", 5);
+  const ros::WallTime give_up = ros::WallTime::now() + ros::WallDuration(10.0);
+  while ((updates.getNumPublishers() < 1 || feedback.getNumSubscribers() < 1) && ros::WallTime::now() < give_up)
+    loop->run(0.1);
+  auto letGo = [&](double z)
+  {
+    visualization_msgs::InteractiveMarkerFeedback f;
+    f.header.frame_id = "odom";
+    f.client_id = "test";
+    f.marker_name = "depth_setpoint";
+    f.control_name = "move_z";
+    f.event_type = visualization_msgs::InteractiveMarkerFeedback::MOUSE_UP;
+    f.pose.position.z = z;
+    f.pose.orientation.w = 1.0;
+    feedback.publish(f);
+  };
+  const double target = loop->depth() + 10.0;
+  letGo(-target);
+  loop->run(90.0);
+  const double final_error = std::abs(loop->depth() - target);
+  double z_after_drag;
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    z_after_drag = marker_z;
+  }
+  letGo(5.0);  // above the water: refused
+  loop->run(2.0);
+  std::lock_guard<std::mutex> lock(mutex);
+  std::printf("marker let go at %.2f m: the vehicle at %.2f m after 90 s; marker z %.2f, after a refused drag %.2f\n",
+              target, loop->depth(), z_after_drag, marker_z);
+  EXPECT_LT(final_error, kTolerance);
+  EXPECT_NEAR(z_after_drag, -target, 1e-9);
+  EXPECT_NEAR(marker_z, -target, 1e-9);  // back where the setpoint is
 }
 
 int main(int argc, char** argv)

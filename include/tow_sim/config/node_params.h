@@ -48,6 +48,7 @@ struct AutopilotNodeParams
   std::string world_frame = "odom";  // frame of both odometries
   // tow_sim_node's ~plan_cable_out, asked for the winch's feed-forward at each depth setpoint ("": none).
   std::string plan_service = "tow_sim/plan_cable_out";
+  bool setpoint_marker = true;  // an interactive marker in rviz to drag the depth setpoint
 };
 const ParamTable<AutopilotNodeParams>& autopilotNodeParams();
 void validate(const AutopilotNodeParams& params, const std::string& prefix);

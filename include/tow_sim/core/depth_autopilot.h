@@ -162,7 +162,8 @@ public:
 
   void reset();  // forgets the integral, the measurements, the setpoint and the track
   bool hasVehicle() const { return has_vehicle_; }
-  double vehicleStamp() const { return vehicle_.t; }  // [s] of the newest accepted measurement
+  double vehicleStamp() const { return vehicle_.t; }                       // [s] of the newest accepted measurement
+  const Eigen::Vector3d& vehiclePosition() const { return vehicle_.p_W; }  // [m] of it, world
   const DepthAutopilotParams& params() const { return p_; }
   const PastTrack& track() const { return track_; }
 

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <dynamic_reconfigure/server.h>
+#include <interactive_markers/interactive_marker_server.h>
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
 #include <std_msgs/Float64.h>
@@ -35,6 +36,14 @@ private:
   void onShipOdometry(const nav_msgs::Odometry::ConstPtr& msg);
   void onSetpoint(const std_msgs::Float64::ConstPtr& msg);
   void onAltitudeSetpoint(const std_msgs::Float64::ConstPtr& msg);
+  // A depth setpoint from the topic or the marker: validated, planned for the winch, the marker moved.
+  void applyDepthSetpoint(double depth, const std::string& source);
+  // ~setpoint_marker: dragged along z in rviz, it sets the depth setpoint where it is let go; it follows
+  // the vehicle horizontally and shows the setpoint's depth.
+  void setUpMarker();
+  void onMarkerFeedback(const visualization_msgs::InteractiveMarkerFeedbackConstPtr& feedback);
+  void moveMarker();
+  void followWithMarker();  // moveMarker when the vehicle has gone 2 m or the setpoint changed
   void onCableState(const tow_sim::CableState::ConstPtr& msg);
   void tick(const ros::TimerEvent& event);
   bool frameOk(const nav_msgs::Odometry& msg, const char* topic);
@@ -66,6 +75,8 @@ private:
   ros::Timer timer_;
   boost::recursive_mutex reconfigure_mutex_;
   std::unique_ptr<dynamic_reconfigure::Server<tow_sim::DepthAutopilotConfig>> reconfigure_;
+  std::unique_ptr<interactive_markers::InteractiveMarkerServer> marker_server_;
+  double marker_x_ = 0.0, marker_y_ = 0.0, marker_z_ = 0.0;  // [m] where the marker was last put
 };
 
 }  // namespace tow_sim
