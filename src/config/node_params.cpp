@@ -81,8 +81,8 @@ const ParamTable<AutopilotNodeParams>& autopilotNodeParams()
                                                "asked for the winch's feed-forward at each depth setpoint; empty: "
                                                "none, the cable out at the first cable/state stands in")
                                          .boolean("setpoint_marker", &A::setpoint_marker,
-                                               "an interactive marker (~setpoint_marker) at the vehicle to drag "
-                                               "the depth setpoint in rviz");
+                                                  "an interactive marker (~setpoint_marker) at the vehicle to drag "
+                                                  "the depth setpoint in rviz");
   return table;
 }
 
