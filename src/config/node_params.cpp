@@ -93,4 +93,31 @@ void validate(const AutopilotNodeParams& p, const std::string& prefix)
     throw std::invalid_argument(prefix + "world_frame: must be a non-empty string");
 }
 
+const ParamTable<ReplayParams>& replayParams()
+{
+  using R = ReplayParams;
+  static const ParamTable<R> table =
+      ParamTable<R>()
+          .text("run", &R::run, "a folder with shapes.csv", "the tow_sim_batch run to replay (required)")
+          .number("speed", &R::speed, "-", 0.0, 1e4, kOpen, "simulated seconds per wall second")
+          .number("publish_rate", &R::publish_rate, "Hz", 0.1, 100.0, kClosed, "wall time: /clock and cable/markers")
+          .boolean("loop", &R::loop, "start again after the last shape (else hold it)")
+          .text("world_frame", &R::world_frame, "non-empty", "frame of the markers")
+          .text("vehicle_frame", &R::vehicle_frame, "≠ world_frame",
+                "tf child frame at the vehicle's element (bail to tail midpoint, x forward): rviz's view follows it")
+          .number("tension_color_max", &R::tension_color_max, "N", 0.0, 1e9, kOpen, "red end of the colour scale")
+          .number("cable_marker_width", &R::cable_marker_width, "m", 0.0, 100.0, kOpen, "drawn cable width");
+  return table;
+}
+
+void validate(const ReplayParams& p, const std::string& prefix)
+{
+  validateParams(replayParams(), p, prefix);
+  if (p.run.empty())
+    throw std::invalid_argument(prefix + "run: must name a tow_sim_batch output folder (with shapes.csv)");
+  if (p.world_frame.empty() || p.vehicle_frame.empty() || p.world_frame == p.vehicle_frame)
+    throw std::invalid_argument(prefix +
+                                "vehicle_frame: world_frame and vehicle_frame must be non-empty and different");
+}
+
 }  // namespace tow_sim

@@ -249,6 +249,7 @@ const std::map<std::string, std::function<std::string()>>& tables()
     { "numerics", [] { return markdown(numericsParams(), NumericsParams()); } },
     { "node", [] { return markdown(nodeParams(), NodeParams()); } },
     { "autopilot_node", [] { return markdown(autopilotNodeParams(), AutopilotNodeParams()); } },
+    { "replay_node", [] { return markdown(replayParams(), ReplayParams()); } },
     { "ship", [] { return markdown(shipParams(), Scenario()); } },
     { "manoeuvres", [] { return markdown(manoeuvreParams(), Manoeuvre()); } },
     { "commands", [] { return markdown(commandParams(), CommandEvent()); } },

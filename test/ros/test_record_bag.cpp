@@ -1,12 +1,14 @@
 // The demo with record:=true writes a bag with the node's outputs: 20 s of wall time recorded, its topics
-// counted by `rosbag info`.
+// counted by `rosbag info`; tow_sim_plot turns the bag into the batch runner's CSV files and plots.
 #include <gtest/gtest.h>
 
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <map>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -61,6 +63,43 @@ TEST(RecordBag, TheDemoRecordsItsOutputs)
   ASSERT_TRUE(n.count("ship/odom"));
   EXPECT_GT(n.at("ship/odom"), n.at("cable/state"));
   EXPECT_TRUE(n.count("/tf") && n.count("/diagnostics"));
+
+  // tow_sim_plot BAG --out DIR: one timeseries row per cable/state message, increasing times, tensions
+  // positive; the four plots of a run.
+  const std::string out = "/tmp/tow_sim_test_record/plots";
+  const std::string plot = "rm -rf " + out + " && /usr/bin/python3 " + TOW_SIM_SOURCE_DIR +
+                           "/scripts/tow_sim_plot /tmp/tow_sim_test_record/tow_sim_*.bag --out " + out + " 2>&1";
+  FILE* plotter = popen(plot.c_str(), "r");
+  ASSERT_NE(plotter, nullptr);
+  std::string said;
+  while (fgets(buffer, sizeof(buffer), plotter))
+    said += buffer;
+  ASSERT_EQ(pclose(plotter), 0) << said;
+  std::printf("%s", said.c_str());
+  std::ifstream csv(out + "/timeseries.csv");
+  std::string header, line;
+  ASSERT_TRUE(std::getline(csv, header));
+  ASSERT_EQ(header.rfind("t,", 0), 0u) << header;
+  int column = 0, rows = 0;
+  for (size_t at = 0; header.substr(at, 13) != "tension_ship,"; at = header.find(',', at) + 1, ++column)
+    ASSERT_NE(header.find(',', at), std::string::npos) << "no tension_ship column: " << header;
+  double previous_t = -1.0;
+  while (std::getline(csv, line))
+  {
+    std::istringstream cells(line);
+    std::string cell;
+    std::vector<std::string> row;
+    while (std::getline(cells, cell, ','))
+      row.push_back(cell);
+    ASSERT_GT(row.size(), static_cast<size_t>(column));
+    EXPECT_GT(std::stod(row[0]), previous_t);
+    EXPECT_GT(std::stod(row[column]), 0.0);
+    previous_t = std::stod(row[0]);
+    ++rows;
+  }
+  EXPECT_EQ(rows, n.at("cable/state"));
+  for (const char* png : { "depth_diversion.png", "tensions.png", "plan_view.png", "side_view.png" })
+    EXPECT_TRUE(std::ifstream(out + "/" + png).good()) << png;
 }
 
 }  // namespace

@@ -53,4 +53,19 @@ struct AutopilotNodeParams
 const ParamTable<AutopilotNodeParams>& autopilotNodeParams();
 void validate(const AutopilotNodeParams& params, const std::string& prefix);
 
+// tow_sim_replay: a batch run's shapes replayed into rviz on its own clock.
+struct ReplayParams
+{
+  std::string run;                            // folder of a tow_sim_batch run (its shapes.csv)
+  double speed = 1.0;                         // [-] simulated seconds per wall second
+  double publish_rate = 10.0;                 // [Hz] wall time: /clock and cable/markers
+  bool loop = false;                          // start again after the last shape (else hold it)
+  std::string world_frame = "odom";           // frame of the markers
+  std::string vehicle_frame = "tow_vehicle";  // tf child frame at the vehicle (rviz's view follows it)
+  double tension_color_max = 5000.0;          // [N] red end of the colour scale
+  double cable_marker_width = 0.5;            // [m]
+};
+const ParamTable<ReplayParams>& replayParams();
+void validate(const ReplayParams& params, const std::string& prefix);
+
 }  // namespace tow_sim
