@@ -11,6 +11,27 @@
 
 namespace tow_sim
 {
+namespace
+{
+// The cable as tow_sim_node draws it: a line through the joints coloured by tension.
+visualization_msgs::Marker cableMarker(const ShapeFrame& s, const ReplayParams& params, const std_msgs::Header& header)
+{
+  visualization_msgs::Marker cable;
+  cable.header = header;
+  cable.ns = "cable";
+  cable.type = visualization_msgs::Marker::LINE_STRIP;
+  cable.pose.orientation.w = 1.0;
+  cable.scale.x = params.cable_marker_width;
+  for (Eigen::Index j = 0; j < s.joints.cols(); ++j)
+  {
+    cable.points.push_back(ros_conv::toPoint(s.joints.col(j)));
+    cable.colors.push_back(ros_conv::tensionColor(s.tension[static_cast<size_t>(j)], params.tension_color_max,
+                                                  s.slack[static_cast<size_t>(j)]));
+  }
+  return cable;
+}
+}  // namespace
+
 ReplayNode::ReplayNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     : nh_(nh),
       pnh_(pnh),
@@ -47,19 +68,7 @@ void ReplayNode::publish(double t)
   header.stamp = clock.clock;
   header.frame_id = params_.world_frame;
   visualization_msgs::MarkerArray array;
-  visualization_msgs::Marker cable;
-  cable.header = header;
-  cable.ns = "cable";
-  cable.type = visualization_msgs::Marker::LINE_STRIP;
-  cable.pose.orientation.w = 1.0;
-  cable.scale.x = params_.cable_marker_width;
-  for (Eigen::Index j = 0; j < s.joints.cols(); ++j)
-  {
-    cable.points.push_back(ros_conv::toPoint(s.joints.col(j)));
-    cable.colors.push_back(ros_conv::tensionColor(s.tension[static_cast<size_t>(j)], params_.tension_color_max,
-                                                  s.slack[static_cast<size_t>(j)]));
-  }
-  array.markers.push_back(cable);
+  array.markers.push_back(cableMarker(s, params_, header));
 
   // The vehicle: the last element, bail to tail point.
   const Eigen::Index n = s.joints.cols();
