@@ -8,6 +8,14 @@ namespace tow_sim
 {
 namespace
 {
+// The node's and tow_sim_replay's world and vehicle frames: non-empty and different.
+void requireDistinctFrames(const std::string& world, const std::string& vehicle, const std::string& prefix)
+{
+  if (world.empty() || vehicle.empty() || world == vehicle)
+    throw std::invalid_argument(prefix +
+                                "vehicle_frame: world_frame and vehicle_frame must be non-empty and different");
+}
+
 constexpr double kHalfPi = 1.57079632679489661923;
 constexpr bool kOpen = true, kClosed = false;
 }  // namespace
@@ -63,10 +71,7 @@ const ParamTable<NodeParams>& nodeParams()
 void validate(const NodeParams& p, const std::string& prefix)
 {
   validateParams(nodeParams(), p, prefix);
-  if (p.world_frame.empty() || p.vehicle_frame.empty() || p.world_frame == p.vehicle_frame)
-    throw std::invalid_argument(prefix +
-                                "vehicle_frame: world_frame and vehicle_frame must be non-empty and "
-                                "different");
+  requireDistinctFrames(p.world_frame, p.vehicle_frame, prefix);
 }
 
 const ParamTable<AutopilotNodeParams>& autopilotNodeParams()
@@ -115,9 +120,7 @@ void validate(const ReplayParams& p, const std::string& prefix)
   validateParams(replayParams(), p, prefix);
   if (p.run.empty())
     throw std::invalid_argument(prefix + "run: must name a tow_sim_batch output folder (with shapes.csv)");
-  if (p.world_frame.empty() || p.vehicle_frame.empty() || p.world_frame == p.vehicle_frame)
-    throw std::invalid_argument(prefix +
-                                "vehicle_frame: world_frame and vehicle_frame must be non-empty and different");
+  requireDistinctFrames(p.world_frame, p.vehicle_frame, prefix);
 }
 
 }  // namespace tow_sim

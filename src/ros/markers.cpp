@@ -7,8 +7,6 @@
 
 namespace tow_sim
 {
-namespace
-{
 visualization_msgs::Marker baseMarker(const std_msgs::Header& header, const std::string& ns, int id, int type)
 {
   visualization_msgs::Marker m;
@@ -22,6 +20,24 @@ visualization_msgs::Marker baseMarker(const std_msgs::Header& header, const std:
   return m;
 }
 
+visualization_msgs::Marker tensionLine(const std_msgs::Header& header, const Eigen::Matrix3Xd& points,
+                                       const std::vector<double>& tensions, const std::vector<bool>& slack,
+                                       double width, double color_max)
+{
+  visualization_msgs::Marker cable = baseMarker(header, "cable", 0, visualization_msgs::Marker::LINE_STRIP);
+  cable.scale.x = width;
+  for (Eigen::Index j = 0; j < points.cols(); ++j)
+  {
+    const size_t i = static_cast<size_t>(j);
+    cable.points.push_back(ros_conv::toPoint(points.col(j)));
+    cable.colors.push_back(ros_conv::tensionColor(tensions[i], color_max, slack[i]));
+  }
+  return cable;
+}
+
+namespace
+{
+
 std_msgs::ColorRGBA grey(double level)
 {
   std_msgs::ColorRGBA c;
@@ -33,15 +49,11 @@ std_msgs::ColorRGBA grey(double level)
 // Cable: tow point to bail, each joint coloured by its tension (magenta where slack).
 visualization_msgs::Marker cableMarker(const TowSnapshot& s, const NodeParams& params, const std_msgs::Header& header)
 {
-  visualization_msgs::Marker cable = baseMarker(header, "cable", 0, visualization_msgs::Marker::LINE_STRIP);
-  cable.scale.x = params.cable_marker_width;
+  std::vector<double> tensions(static_cast<size_t>(s.segments) + 1);
   for (int j = 0; j <= s.segments; ++j)
-  {
-    cable.points.push_back(ros_conv::toPoint(s.joints.col(j)));
-    const size_t i = static_cast<size_t>(j);
-    cable.colors.push_back(ros_conv::tensionColor(s.tensions.col(j).norm(), params.tension_color_max, s.slack[i]));
-  }
-  return cable;
+    tensions[static_cast<size_t>(j)] = s.tensions.col(j).norm();
+  return tensionLine(header, s.joints.leftCols(s.segments + 1), tensions, s.slack, params.cable_marker_width,
+                     params.tension_color_max);
 }
 
 // Hull (an ellipsoid from the nose to the tail point) and four fins at their actual deflections.

@@ -8,30 +8,10 @@
 #include <cstdio>
 
 #include "tow_sim/ros/conversions.h"
+#include "tow_sim/ros/markers.h"
 
 namespace tow_sim
 {
-namespace
-{
-// The cable as tow_sim_node draws it: a line through the joints coloured by tension.
-visualization_msgs::Marker cableMarker(const ShapeFrame& s, const ReplayParams& params, const std_msgs::Header& header)
-{
-  visualization_msgs::Marker cable;
-  cable.header = header;
-  cable.ns = "cable";
-  cable.type = visualization_msgs::Marker::LINE_STRIP;
-  cable.pose.orientation.w = 1.0;
-  cable.scale.x = params.cable_marker_width;
-  for (Eigen::Index j = 0; j < s.joints.cols(); ++j)
-  {
-    cable.points.push_back(ros_conv::toPoint(s.joints.col(j)));
-    cable.colors.push_back(ros_conv::tensionColor(s.tension[static_cast<size_t>(j)], params.tension_color_max,
-                                                  s.slack[static_cast<size_t>(j)]));
-  }
-  return cable;
-}
-}  // namespace
-
 ReplayNode::ReplayNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     : nh_(nh),
       pnh_(pnh),
@@ -68,24 +48,21 @@ void ReplayNode::publish(double t)
   header.stamp = clock.clock;
   header.frame_id = params_.world_frame;
   visualization_msgs::MarkerArray array;
-  array.markers.push_back(cableMarker(s, params_, header));
+  array.markers.push_back(
+      tensionLine(header, s.joints, s.tension, s.slack, params_.cable_marker_width, params_.tension_color_max));
 
   // The vehicle: the last element, bail to tail point.
   const Eigen::Index n = s.joints.cols();
   if (n >= 2)
   {
     const Eigen::Vector3d bail = s.joints.col(n - 2), tail = s.joints.col(n - 1);
-    visualization_msgs::Marker hull;
-    hull.header = header;
-    hull.ns = "vehicle";
-    hull.type = visualization_msgs::Marker::SPHERE;
+    visualization_msgs::Marker hull = baseMarker(header, "vehicle", 0, visualization_msgs::Marker::SPHERE);
     hull.pose.position = ros_conv::toPoint(0.5 * (bail + tail));
     hull.pose.orientation = ros_conv::toQuaternion(
         Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitX(), (bail - tail).normalized()));
     hull.scale.x = std::max((bail - tail).norm(), 0.1);
     hull.scale.y = hull.scale.z = 0.25 * hull.scale.x;
     hull.color.r = hull.color.g = hull.color.b = 0.85;
-    hull.color.a = 1.0;
     array.markers.push_back(hull);
     geometry_msgs::TransformStamped tf;
     tf.header = header;
@@ -98,14 +75,10 @@ void ReplayNode::publish(double t)
       tf_broadcaster_.sendTransform(tf);
     last_tf_t_ = t;
   }
-  visualization_msgs::Marker label;
-  label.header = header;
-  label.ns = "labels";
-  label.type = visualization_msgs::Marker::TEXT_VIEW_FACING;
+  visualization_msgs::Marker label = baseMarker(header, "labels", 0, visualization_msgs::Marker::TEXT_VIEW_FACING);
   label.pose.position = ros_conv::toPoint(s.joints.col(0) + Eigen::Vector3d(0, 0, 15));
-  label.pose.orientation.w = 1.0;
   label.scale.z = 8.0;
-  label.color.r = label.color.g = label.color.b = label.color.a = 1.0;
+  label.color.r = label.color.g = label.color.b = 1.0;
   char text[96];
   std::snprintf(text, sizeof(text), "replay t = %.1f s, T ship %.0f N", t, s.tension.front());
   label.text = text;

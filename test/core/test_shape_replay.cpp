@@ -3,19 +3,17 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
-#include <fstream>
 #include <stdexcept>
 #include <string>
 
+#include "core/temp_file.h"
 #include "tow_sim/scenario/shape_replay.h"
 
 namespace
 {
 std::string writeFile(const std::string& name, const std::string& text)
 {
-  const std::string path = "/tmp/tow_sim_test_" + name + ".csv";
-  std::ofstream(path) << text;
-  return path;
+  return test::writeTempFile("tow_sim_test_" + name + ".csv", text);
 }
 
 TEST(ShapeReplay, InterpolatesBetweenFramesAndHoldsAcrossALayoutChange)

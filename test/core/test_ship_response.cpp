@@ -7,9 +7,8 @@
 
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 
+#include "core/temp_file.h"
 #include "tow_sim/core/odometry_check.h"
 #include "tow_sim/core/ship_response.h"
 #include "tow_sim/scenario/scenario.h"
@@ -207,23 +206,18 @@ TEST(ShipResponse, RatesAreTheTimeDerivativeOfTheMotionOfAMovingShip)
   }
 }
 
-std::string writeFile(const std::string& name, const std::string& text)
-{
-  const std::string path = (std::filesystem::temp_directory_path() / name).string();
-  std::ofstream(path) << text;
-  return path;
-}
+using test::writeTempFile;
 
 TEST(ShipResponse, AnRaoFileIsReadAsAFullGridAndBadOnesAreRefusedByLine)
 {
-  const std::string good = writeFile("tow_sim_rao_good.csv",
-                                     "# a test table\n"
-                                     "frequency,direction,heave_amplitude,heave_phase,roll_amplitude,roll_phase,"
-                                     "pitch_amplitude,pitch_phase\n"
-                                     "1.0, 0.0, 1, 0, 0, 0, 0.1, 1.5707963267948966\n"
-                                     "0.5, 0.0, 1, 0, 0, 0, 0.05, 1.5707963267948966\n"
-                                     "0.5, 3.14159, 0.5, 0.2, 0.01, 0, 0.05, -1.5707963267948966\n"
-                                     "1.0, 3.14159, 0.5, 0.2, 0.01, 0, 0.1, -1.5707963267948966\n");
+  const std::string good = writeTempFile("tow_sim_rao_good.csv",
+                                         "# a test table\n"
+                                         "frequency,direction,heave_amplitude,heave_phase,roll_amplitude,roll_phase,"
+                                         "pitch_amplitude,pitch_phase\n"
+                                         "1.0, 0.0, 1, 0, 0, 0, 0.1, 1.5707963267948966\n"
+                                         "0.5, 0.0, 1, 0, 0, 0, 0.05, 1.5707963267948966\n"
+                                         "0.5, 3.14159, 0.5, 0.2, 0.01, 0, 0.05, -1.5707963267948966\n"
+                                         "1.0, 3.14159, 0.5, 0.2, 0.01, 0, 0.1, -1.5707963267948966\n");
   const RaoTable t = RaoTable::fromCsvFile(good);
   EXPECT_EQ(t.frequencies(), (std::vector<double>{ 0.5, 1.0 }));
   EXPECT_NEAR(std::abs(t.at(0.75, 3.14159).heave - std::polar(0.5, 0.2)), 0.0, 1e-12);
@@ -232,7 +226,7 @@ TEST(ShipResponse, AnRaoFileIsReadAsAFullGridAndBadOnesAreRefusedByLine)
   {
     try
     {
-      RaoTable::fromCsvFile(writeFile("tow_sim_rao_bad.csv", text));
+      RaoTable::fromCsvFile(writeTempFile("tow_sim_rao_bad.csv", text));
     }
     catch (const std::invalid_argument& e)
     {
@@ -285,7 +279,7 @@ TEST(ShipResponse, AMeasuredMotionFileIsReplayedWithContinuousAcceleration)
                   m.roll, m.pitch, m.yaw);
     text += row;
   }
-  const std::string file = writeFile("tow_sim_motion.csv", text);
+  const std::string file = writeTempFile("tow_sim_motion.csv", text);
   const Scenario sc =
       loadScenario(YAML::Load("ship: {tow_point: [-20, 0, 2], motion_file: " + file + "}\nsimulation: {duration: 60}"));
   ASSERT_EQ(sc.motion.size(), 701u);
@@ -333,12 +327,13 @@ TEST(ShipResponse, AMeasuredMotionFileIsReplayedWithContinuousAcceleration)
   e = error("ship: {motion_file: " + file + "}\nsimulation: {duration: 100}");
   EXPECT_NE(e.find("ship.motion_file: covers t = 0"), std::string::npos) << e;
   e = error("ship: {motion_file: " +
-            writeFile("tow_sim_motion_bad.csv", "t,x,y,z,roll,pitch,yaw\n0,0,0,0,0,0,0\n0,1,0,0,0,0,0\n") + "}");
+            writeTempFile("tow_sim_motion_bad.csv", "t,x,y,z,roll,pitch,yaw\n0,0,0,0,0,0,0\n0,1,0,0,0,0,0\n") + "}");
   EXPECT_NE(e.find("line 3: times must increase strictly"), std::string::npos) << e;
   e = error("ship: {rao_file: /nonexistent/rao.csv}");
   EXPECT_NE(e.find("ship.rao_file"), std::string::npos) << e;
   e = error("ship: {motion_file: " +
-            writeFile("tow_sim_motion_close.csv", "t,x,y,z,roll,pitch,yaw\n0,0,0,0,0,0,0\n1e-9,0,0,0,0,0,0\n") + "}");
+            writeTempFile("tow_sim_motion_close.csv", "t,x,y,z,roll,pitch,yaw\n0,0,0,0,0,0,0\n1e-9,0,0,0,0,0,0\n") +
+            "}");
   EXPECT_NE(e.find("line 3: times must increase strictly, by 1 us or more"), std::string::npos) << e;
   // Calm water needs no RAOs: a configuration without gravity (vacuum-like studies) still loads and runs.
   EXPECT_EQ(error("environment: {gravity: 0}\nsimulation: {duration: 10}"), "(accepted)");

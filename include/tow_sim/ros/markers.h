@@ -3,12 +3,23 @@
 
 #include <visualization_msgs/MarkerArray.h>
 
+#include <string>
+#include <vector>
+
 #include "tow_sim/core/tow_run.h"
 #include "tow_sim/core/track_trail.h"
 #include "tow_sim/ros/tow_sim_node.h"
 
 namespace tow_sim
 {
+// A marker of `type` in namespace `ns`: the header, identity pose, opaque, action ADD.
+visualization_msgs::Marker baseMarker(const std_msgs::Header& header, const std::string& ns, int id, int type);
+// The cable as a line strip through `points` (ns "cable", id 0), each point coloured by its tension [N] on
+// the scale up to `color_max` (magenta where `slack`): the node's cable and tow_sim_replay's.
+visualization_msgs::Marker tensionLine(const std_msgs::Header& header, const Eigen::Matrix3Xd& points,
+                                       const std::vector<double>& tensions, const std::vector<bool>& slack,
+                                       double width, double color_max);
+
 struct MarkerTrails
 {
   const TrackTrail* ship = nullptr;     // of the ship's reference point
