@@ -1,8 +1,9 @@
 // tow_sim_batch: runs a scenario faster than real time, without roscore.
 //   tow_sim_batch --scenario FILE.yaml --out DIR
-// Writes DIR/timeseries.csv, DIR/shapes.csv and DIR/scenario.yaml (the scenario with every default
-// filled in). Exit codes: 0 done; 2 bad arguments or scenario; 3 the run diverged (the CSV files then
-// hold the run up to the last good output and the error says so); 4 cannot write DIR.
+// Writes DIR/timeseries.csv, DIR/shapes.csv, DIR/scenario.yaml (the scenario with every default
+// filled in) and DIR/state_<t>.txt at each simulation.save_state_at. Exit codes: 0 done; 2 bad arguments,
+// scenario or saved initial state; 3 the run diverged (the CSV files then hold the run up to the last good
+// output and the error says so); 4 cannot write DIR.
 #include <sys/stat.h>
 
 #include <chrono>
@@ -10,8 +11,11 @@
 #include <cstring>
 #include <exception>
 #include <fstream>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
+#include "tow_sim/core/saved_state.h"
 #include "tow_sim/scenario/batch_run.h"
 
 namespace
@@ -52,6 +56,51 @@ private:
   int next_ = 0;
   bool shown_ = false;
 };
+// Runs the scenario into the open CSV files and the state files, and says how it went (the exit code).
+int runAndReport(const Scenario& sc, const std::string& out_dir, std::ostream& series, std::ostream& shapes)
+{
+  Progress progress(sc.duration);
+  BatchResult result;
+  std::vector<std::string> saved;
+  auto save = [&out_dir, &saved](double t, const RunState& state)
+  {
+    char name[64];
+    std::snprintf(name, sizeof name, "/state_%g.txt", t);
+    writeRunState(out_dir + name, state);
+    saved.push_back(name + 1);
+  };
+  try
+  {
+    runScenario(
+        sc, series, shapes, result, [&progress](double t) { progress.update(t); }, save);
+  }
+  catch (const std::invalid_argument& e)
+  {
+    progress.finish();
+    std::fprintf(stderr, "tow_sim_batch: bad initial state: %s\n", e.what());
+    return 2;
+  }
+  catch (const std::exception& e)
+  {
+    progress.finish();
+    if (!result.start_warning.empty())  // the fallback start is the likeliest cause: say so first
+      std::fprintf(stderr, "tow_sim_batch: %s\n", result.start_warning.c_str());
+    std::fprintf(stderr,
+                 "tow_sim_batch: the run stopped: %s\ntow_sim_batch: the CSV files in %s are INCOMPLETE: they hold "
+                 "the run up to t = %.3f s of %.3f s\n",
+                 e.what(), out_dir.c_str(), result.t_reached, sc.duration);
+    return 3;
+  }
+  progress.finish();
+  if (!result.start_warning.empty())
+    std::fprintf(stderr, "tow_sim_batch: %s\n", result.start_warning.c_str());
+  std::string states;
+  for (const std::string& name : saved)
+    states += ", " + name;
+  std::printf("tow_sim_batch: %.0f s simulated; wrote %s/timeseries.csv (%ld rows), shapes.csv, scenario.yaml%s\n",
+              sc.duration, out_dir.c_str(), result.rows, states.c_str());
+  return 0;
+}
 }  // namespace
 
 int main(int argc, char** argv)
@@ -89,27 +138,5 @@ int main(int argc, char** argv)
   resolved << "# " << scenario_path << " with every default filled in, as run by tow_sim_batch\n" << toYaml(sc) << "\n";
   resolved.close();
 
-  Progress progress(sc.duration);
-  BatchResult result;
-  try
-  {
-    runScenario(sc, series, shapes, result, [&progress](double t) { progress.update(t); });
-  }
-  catch (const std::exception& e)
-  {
-    progress.finish();
-    if (!result.start_warning.empty())  // the fallback start is the likeliest cause: say so first
-      std::fprintf(stderr, "tow_sim_batch: %s\n", result.start_warning.c_str());
-    std::fprintf(stderr,
-                 "tow_sim_batch: the run stopped: %s\ntow_sim_batch: the CSV files in %s are INCOMPLETE: they hold "
-                 "the run up to t = %.3f s of %.3f s\n",
-                 e.what(), out_dir.c_str(), result.t_reached, sc.duration);
-    return 3;
-  }
-  progress.finish();
-  if (!result.start_warning.empty())
-    std::fprintf(stderr, "tow_sim_batch: %s\n", result.start_warning.c_str());
-  std::printf("tow_sim_batch: %.0f s simulated; wrote %s/timeseries.csv (%ld rows), shapes.csv, scenario.yaml\n",
-              sc.duration, out_dir.c_str(), result.rows);
-  return 0;
+  return runAndReport(sc, out_dir, series, shapes);
 }

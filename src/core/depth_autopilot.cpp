@@ -42,6 +42,18 @@ void PastTrack::add(const Eigen::Vector2d& p_W)
     points_.pop_front();
 }
 
+void PastTrack::restore(const std::vector<Eigen::Vector2d>& points)
+{
+  points_.clear();
+  for (const Eigen::Vector2d& p : points)
+    if (p.allFinite())
+    {
+      points_.push_back(p);
+      if (points_.size() > max_points_)
+        points_.pop_front();
+    }
+}
+
 PastTrack::Offset PastTrack::offset(const Eigen::Vector2d& p_W, const Eigen::Vector2d& v_W) const
 {
   Offset best;
@@ -239,6 +251,42 @@ void DepthAutopilot::reset()
   winch_integral_ = 0.0;
   if (!feed_forward_)
     cable_out_base_ = std::numeric_limits<double>::quiet_NaN();
+}
+
+DepthAutopilotState DepthAutopilot::state() const
+{
+  DepthAutopilotState s;
+  s.has_setpoint = has_setpoint_;
+  s.setpoint = setpoint_;
+  s.altitude_mode = altitude_mode_;
+  s.altitude_setpoint = altitude_setpoint_;
+  s.has_vehicle = has_vehicle_;
+  s.vehicle = vehicle_;
+  s.integrated_until = integrated_until_;
+  s.integrated = integrated_;
+  s.integral = integral_;
+  s.cable_out_base = cable_out_base_;
+  s.feed_forward = feed_forward_;
+  s.winch_integral = winch_integral_;
+  s.track = track_.points();
+  return s;
+}
+
+void DepthAutopilot::restore(const DepthAutopilotState& s)
+{
+  has_setpoint_ = s.has_setpoint;
+  setpoint_ = s.setpoint;
+  altitude_mode_ = s.altitude_mode;
+  altitude_setpoint_ = s.altitude_setpoint;
+  has_vehicle_ = s.has_vehicle;
+  vehicle_ = s.vehicle;
+  integrated_until_ = s.integrated_until;
+  integrated_ = s.integrated;
+  integral_ = s.integral;
+  cable_out_base_ = s.cable_out_base;
+  feed_forward_ = s.feed_forward;
+  winch_integral_ = s.winch_integral;
+  track_.restore(s.track);
 }
 
 }  // namespace tow_sim

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 #include "tow_sim/core/equilibrium.h"
 
@@ -129,6 +130,8 @@ ChainState TowRun::initialState(double t, std::string* warning) const
       state.v = initial_.points;
       state.v.colwise() = tow.v_W;
       break;
+    case InitialShape::Type::kFile:
+      throw std::logic_error("TowRun::start: a saved state (" + initial_.path + ") is restore()d, not started");
   }
   // The initial shapes know nothing of the seabed: joints below it are raised onto it (and an elastic
   // cable's segments laid out again at their lengths along their new directions, as the projection does
@@ -358,6 +361,126 @@ TowSnapshot TowRun::snapshot()
   }
   if (autopilot_ && autopilot_->hasSetpoint())
     s.depth_setpoint = autopilot_->setpoint();
+  return s;
+}
+
+RunState TowRun::saveState() const
+{
+  if (!started_)
+    throw std::logic_error("TowRun::saveState before start()");
+  RunState s;
+  s.sim = sim_.saveState();
+  s.tow_point = sim_.shipEnd();
+  s.heading = ship_->pose(time()).heading;
+  s.ticks = ticks_;
+  s.snap_count = snap_count_;
+  s.max_strain = max_strain_;
+  s.max_length_error = max_length_error_;
+  s.tension_ship_range = tension_ship_range_;
+  s.tension_vehicle_range = tension_vehicle_range_;
+  s.attitude_heading = attitude_.heldHeading();
+  if (autopilot_)
+    s.autopilot = autopilot_->state();
+  return s;
+}
+
+namespace
+{
+void requireFinite(const std::string& field, double value)
+{
+  if (!std::isfinite(value))
+    throw std::invalid_argument("saved state: " + field + " must be finite, got " + std::to_string(value));
+}
+
+void validate(const DepthAutopilotState& a)
+{
+  requireFinite("autopilot.setpoint", a.setpoint);
+  requireFinite("autopilot.altitude_setpoint", a.altitude_setpoint);
+  requireFinite("autopilot.vehicle.t", a.vehicle.t);
+  if (!a.vehicle.p_W.allFinite() || !a.vehicle.v_W.allFinite())
+    throw std::invalid_argument("saved state: autopilot.vehicle position and velocity must be finite");
+  requireFinite("autopilot.integrated_until", a.integrated_until);
+  requireFinite("autopilot.integral", a.integral);
+  requireFinite("autopilot.winch_integral", a.winch_integral);
+}
+}  // namespace
+
+void TowRun::restore(const RunState& s)
+{
+  if (ship_->empty())
+    throw std::invalid_argument("TowRun::restore: no ship sample yet");
+  if (s.autopilot)
+    validate(*s.autopilot);
+  if (s.snap_count < 0 || s.ticks < 0)
+    throw std::invalid_argument("saved state: ticks and snap_count must not be negative");
+  sim_.restoreState(s.sim);  // checks everything before it changes anything
+  const double t = s.sim.t;
+  // The schedule as it stands after t: what was due by then has acted (the state holds its effect).
+  next_command_ = 0;
+  while (next_command_ < commands_.size() && commands_[next_command_].t <= t)
+    ++next_command_;
+  if (autopilot_loop_.enabled)
+  {
+    autopilot_ = std::make_unique<DepthAutopilot>(autopilot_loop_.params);
+    const std::vector<AutopilotSetpoint>& setpoints = autopilot_loop_.setpoints;
+    for (next_setpoint_ = 0; next_setpoint_ < setpoints.size() && setpoints[next_setpoint_].t <= t; ++next_setpoint_)
+      if (!s.autopilot)
+        applySetpoint(setpoints[next_setpoint_]);
+    if (s.autopilot)
+      autopilot_->restore(*s.autopilot);
+    // The saved tick goes on where it was (a tick at exactly t has run or not); any other rate's from t on.
+    const long first = firstTickFrom(t);
+    ticks_ = s.autopilot && (s.ticks == first || s.ticks == first + 1) ? s.ticks : first;
+  }
+  snap_count_ = s.snap_count;
+  max_strain_ = s.max_strain;
+  max_length_error_ = s.max_length_error;
+  tension_ship_range_ = s.tension_ship_range;
+  tension_vehicle_range_ = s.tension_vehicle_range;
+  attitude_.restoreHeading(s.attitude_heading);
+  started_ = true;
+}
+
+RunState relocate(const RunState& state, double t, const ShipEndState& tow_point, double heading)
+{
+  RunState s = state;
+  const double dt = t - state.sim.t;
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(heading - state.heading, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const Eigen::Vector3d p0 = state.tow_point.p_W, v0 = state.tow_point.v_W;
+  auto place = [&](Eigen::Vector3d& p, Eigen::Vector3d& v)
+  {
+    p = tow_point.p_W + R * (p - p0);
+    v = tow_point.v_W + R * (v - v0);
+  };
+  const StateLayout L{ state.sim.segments + 1 };
+  if (state.sim.y.size() != L.size())
+    throw std::invalid_argument("saved state: y does not have the size of its segments");
+  auto x = L.positions(s.sim.y);
+  auto v = L.velocities(s.sim.y);
+  for (int j = 0; j < L.joints; ++j)
+  {
+    Eigen::Vector3d p = x.col(j), w = v.col(j);
+    place(p, w);
+    x.col(j) = p;
+    v.col(j) = w;
+  }
+  s.sim.t = t;
+  s.sim.rudder.t0 += dt;
+  s.sim.elevator.t0 += dt;
+  s.tow_point = tow_point;
+  s.heading = heading;
+  if (std::isfinite(s.attitude_heading))  // a held heading turns with the ship
+    s.attitude_heading += heading - state.heading;
+  if (s.autopilot)
+  {
+    DepthAutopilotState& a = *s.autopilot;
+    a.vehicle.t += dt;
+    a.vehicle.received += dt;  // NaN stays NaN
+    a.integrated_until += dt;
+    place(a.vehicle.p_W, a.vehicle.v_W);
+    for (Eigen::Vector2d& q : a.track)
+      q = tow_point.p_W.head<2>() + R.topLeftCorner<2, 2>() * (q - p0.head<2>());
+  }
   return s;
 }
 

@@ -6,6 +6,7 @@
 #include <memory>
 #include <sstream>
 
+#include "tow_sim/core/saved_state.h"
 #include "tow_sim/scenario/ship_path.h"
 #include "tow_sim/scenario/towing_chart.h"
 
@@ -56,7 +57,7 @@ std::string shapesRows(const TowSnapshot& s)
 }
 
 void runScenario(const Scenario& sc, std::ostream& series, std::ostream& shapes, BatchResult& result,
-                 const std::function<void(double t)>& progress)
+                 const std::function<void(double t)>& progress, const SaveStateSink& save_state)
 {
   auto ship = std::make_shared<ShipHistory>(buildShipPath(sc));
   TowRun run(sc.config, ship, sc.initial);
@@ -75,22 +76,39 @@ void runScenario(const Scenario& sc, std::ostream& series, std::ostream& shapes,
     run.setAutopilot(loop);
   }
   result = BatchResult();
-  result.start_warning = run.start(0.0);
+  long first = 0;
+  if (sc.initial.type == InitialShape::Type::kFile)
+  {
+    const RunState state = readRunState(sc.initial.path);
+    if (!(state.sim.t >= 0.0 && state.sim.t <= sc.duration))
+      throw std::invalid_argument(
+          "initial_state.path: the state's time " + std::to_string(state.sim.t) +
+          " s is not within the run's [0, simulation.duration = " + std::to_string(sc.duration) + " s]");
+    run.restore(state);
+    first = static_cast<long>(std::ceil(state.sim.t / sc.output_interval - 1e-9));
+  }
+  else
+    result.start_warning = run.start(0.0);
 
   series << timeseriesHeader() << '\n';
   shapes << shapesHeader() << '\n';
   const long outputs = std::lround(sc.duration / sc.output_interval);
   const long shapes_every = std::max(1L, std::lround(sc.shape_interval / sc.output_interval));
-  for (long i = 0; i <= outputs; ++i)
+  std::size_t next_save = 0;
+  for (long i = first; i <= outputs; ++i)
   {
     const double t = std::min(sc.duration, i * sc.output_interval);
     run.advanceTo(t);
+    for (; next_save < sc.save_state_at.size() && sc.save_state_at[next_save] <= t + 1e-9 * std::max(1.0, t);
+         ++next_save)
+      if (save_state && sc.save_state_at[next_save] >= t - 1e-9 * std::max(1.0, t))
+        save_state(t, run.saveState());
     const TowSnapshot s = run.snapshot();
     series << timeseriesRow(s) << '\n';
     if (i % shapes_every == 0 || i == outputs)
       shapes << shapesRows(s);
     result.t_reached = t;
-    result.rows = i + 1;
+    result.rows = i - first + 1;
     if (progress)
       progress(t);
   }

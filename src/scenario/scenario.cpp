@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <stdexcept>
 
 #include "tow_sim/config/param_yaml.h"
@@ -101,11 +102,15 @@ const ParamTable<InitialShape>& initialStateParams()
                   { { "equilibrium", I::Type::kEquilibrium },
                     { "line", I::Type::kLine },
                     { "hanging", I::Type::kHanging },
-                    { "points", I::Type::kPoints } },
-                  "the steady tow (a line if none is found), a line along direction, straight down, or points")
+                    { "points", I::Type::kPoints },
+                    { "file", I::Type::kFile } },
+                  "the steady tow (a line if none is found), a line along direction, straight down, points, or a "
+                  "saved state")
           .vector3("direction", &I::line_direction_S, "-", -1e6, 1e6,
                    "ship frame (FLU), not zero: the line's direction")
-          .custom("points", "m", "[]", "3 (ν + 1) numbers", "joints x_2 … x_{ν+2}, world, x y z each");
+          .custom("points", "m", "[]", "3 (ν + 1) numbers", "joints x_2 … x_{ν+2}, world, x y z each")
+          .text("path", &I::path, "a readable state file, for file",
+                "a state saved by save_state_at or the node's ~save_state; relative to the scenario");
   return table;
 }
 
@@ -116,7 +121,9 @@ const ParamTable<Scenario>& simulationParams()
       ParamTable<S>()
           .number("duration", &S::duration, "s", 0.0, 1e7, kOpen, "simulated time")
           .number("output_interval", &S::output_interval, "s", 1e-3, 1e5, kClosed, "timeseries.csv rows")
-          .number("shape_interval", &S::shape_interval, "s", 1e-3, 1e7, kClosed, "shapes.csv");
+          .number("shape_interval", &S::shape_interval, "s", 1e-3, 1e7, kClosed, "shapes.csv")
+          .custom("save_state_at", "s", "[]", "output times in [0, duration]",
+                  "the run's state is written at each (state_<t>.txt beside the CSVs; initial_state type file)");
   return table;
 }
 
@@ -247,7 +254,7 @@ void readAutopilot(Section& top, Scenario& sc)
   }
 }
 
-void readInitialState(Section& top, Scenario& sc)
+void readInitialState(Section& top, Scenario& sc, const std::string& base_dir)
 {
   if (!top.has("initial_state"))
     return;
@@ -260,6 +267,15 @@ void readInitialState(Section& top, Scenario& sc)
   validateParams(initialStateParams(), init, s.name());
   if (init.line_direction_S.norm() < 1e-9 || !init.line_direction_S.allFinite())
     fail(s.path("direction"), "must be a finite, non-zero [x, y, z] in the ship frame");
+  if ((init.type == InitialShape::Type::kFile) != !init.path.empty())
+    fail(s.path("path"), "is the saved state of type: file, and only of it");
+  if (init.type == InitialShape::Type::kFile)
+  {
+    init.path = resolvePath(init.path, base_dir);
+    std::ifstream probe(init.path);
+    if (!probe)
+      fail(s.path("path"), "cannot read " + init.path);
+  }
   const size_t joints = static_cast<size_t>(sc.config.cable.segments) + 1;
   if (init.type != InitialShape::Type::kPoints)
     return;
@@ -267,6 +283,19 @@ void readInitialState(Section& top, Scenario& sc)
     fail(s.path("points"), "must hold 3 (nu + 1) = " + std::to_string(3 * joints) +
                                " numbers (joints x_2 .. x_{nu+2}, world, x y z each); got " + std::to_string(p.size()));
   init.points = Eigen::Map<const Eigen::Matrix3Xd>(p.data(), 3, static_cast<Eigen::Index>(joints));
+}
+
+// Each save time an output time within the run (the state is saved where a row is written).
+void checkSaveTimes(Scenario& sc, const std::string& key)
+{
+  std::sort(sc.save_state_at.begin(), sc.save_state_at.end());
+  for (double t : sc.save_state_at)
+  {
+    const double k = t / sc.output_interval;
+    if (!(t >= 0.0 && t <= sc.duration) || std::abs(k - std::round(k)) > 1e-9 * std::max(1.0, k))
+      fail(key, "must list output times (multiples of output_interval = " + std::to_string(sc.output_interval) +
+                    " s) in [0, duration = " + std::to_string(sc.duration) + " s]; got " + std::to_string(t));
+  }
 }
 
 Scenario loadScenarioUnguarded(const YAML::Node& root, const std::string& base_dir)
@@ -283,11 +312,13 @@ Scenario loadScenarioUnguarded(const YAML::Node& root, const std::string& base_d
   readShip(ParamReader(top.child("ship")), sc, base_dir);
   readCommands(top, sc);
   readAutopilot(top, sc);
-  readInitialState(top, sc);
+  readInitialState(top, sc, base_dir);
   ParamReader simulation(top.child("simulation"));
   simulation.read(simulationParams(), sc);
+  sc.save_state_at = simulation.at("").list("save_state_at");
   simulation.finish();
   validateParams(simulationParams(), sc, simulation.at("").name());
+  checkSaveTimes(sc, simulation.at("").path("save_state_at"));
   top.finish();
   if (!sc.motion.empty() && (sc.motion.front().t > 0.0 || sc.motion.back().t < sc.duration))
     fail("ship.motion_file", "covers t = " + std::to_string(sc.motion.front().t) + " .. " +
@@ -386,6 +417,8 @@ YAML::Node toYaml(const Scenario& sc)
   if (sc.initial.type == InitialShape::Type::kPoints)
     init["points"] = std::vector<double>(sc.initial.points.data(), sc.initial.points.data() + sc.initial.points.size());
   detail::writeParams(root["simulation"], simulationParams(), sc);
+  if (!sc.save_state_at.empty())
+    root["simulation"]["save_state_at"] = sc.save_state_at;
   return root;
 }
 

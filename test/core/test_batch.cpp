@@ -397,6 +397,13 @@ TEST(Batch, BadScenariosAreRefusedNamingTheKey)
   refuse("autopilot: {max_depth: -5, setpoints: [{t: 0, depth: 10}]}", "autopilot.max_depth = -5");
   refuse("autopilot: {setpoints: [{t: 0, altitude: 10}]}", "autopilot.setpoints[0].altitude: needs a seabed");
   refuse("autopilot: {}\ncommands: [{t: 5, elevator: 0.1}]", "commands[0]: rudder, elevator and thrust belong");
+  refuse("simulation: {output_interval: 1, save_state_at: [10.5]}", "simulation.save_state_at: must list output times");
+  refuse("simulation: {duration: 50, save_state_at: [60]}", "simulation.save_state_at: must list output times");
+  refuse("initial_state: {type: file}", "initial_state.path: is the saved state of type: file");
+  refuse("initial_state: {type: file, path: no_such_state.txt}",
+         "initial_state.path: cannot read " + outputRoot() + "/no_such_state.txt");
+  std::ofstream(outputRoot() + "/not_a_state.txt") << "t 5\n";
+  refuse("initial_state: {type: file, path: not_a_state.txt}", "bad initial state: saved state");
   int status = 0;
   run(std::string(TOW_SIM_BATCH_BINARY) + " --scenario", &status);
   EXPECT_EQ(status, 2);

@@ -80,6 +80,11 @@ public:
   // Needs usable(); p_W [m] and v_W [m/s] of the vehicle, world, horizontal components.
   Offset offset(const Eigen::Vector2d& p_W, const Eigen::Vector2d& v_W) const;
 
+  // The stored points [m], oldest first (a saved state), and those points back (at most the most recent
+  // ones that fit; non-finite ones are skipped).
+  std::vector<Eigen::Vector2d> points() const { return { points_.begin(), points_.end() }; }
+  void restore(const std::vector<Eigen::Vector2d>& points);
+
 private:
   double spacing_;
   size_t max_points_;
@@ -124,6 +129,25 @@ struct AutopilotCommand
   double winch_integral = 0.0;
 };
 
+// What the autopilot holds between updates (a saved state): its setpoint, newest measurement, integrals,
+// feed-forward and the ship's past track; its parameters are not part of it.
+struct DepthAutopilotState
+{
+  bool has_setpoint = false;
+  double setpoint = 0.0;  // [m]
+  bool altitude_mode = false;
+  double altitude_setpoint = 0.0;  // [m]
+  bool has_vehicle = false;
+  VehicleMeasurement vehicle;
+  double integrated_until = 0.0;  // [s]
+  bool integrated = false;
+  double integral = 0.0;                                             // [rad]
+  double cable_out_base = std::numeric_limits<double>::quiet_NaN();  // [m]
+  bool feed_forward = false;
+  double winch_integral = 0.0;         // [m]
+  std::vector<Eigen::Vector2d> track;  // [m] oldest first
+};
+
 class DepthAutopilot
 {
 public:
@@ -166,6 +190,10 @@ public:
   const Eigen::Vector3d& vehiclePosition() const { return vehicle_.p_W; }  // [m] of it, world
   const DepthAutopilotParams& params() const { return p_; }
   const PastTrack& track() const { return track_; }
+
+  // Everything but the parameters, and back (a saved state; the caller validates it).
+  DepthAutopilotState state() const;
+  void restore(const DepthAutopilotState& s);
 
 private:
   double elevator(double error, double v_up, double dt, AutopilotCommand& out);

@@ -61,6 +61,19 @@ public:
   double target() const { return target_; }
   void reset(double t, double angle);
 
+  // Where the servo is (a saved state): the command's time [s], the angle then [rad] and the target [rad].
+  struct State
+  {
+    double t0 = 0.0, angle0 = 0.0, target = 0.0;
+  };
+  State state() const { return { t0_, angle0_, target_ }; }
+  void restore(const State& s)
+  {
+    t0_ = s.t0;
+    angle0_ = s.angle0;
+    target_ = s.target;
+  }
+
 private:
   double max_deflection_, max_rate_;
   double t0_ = 0.0, angle0_ = 0.0, target_ = 0.0;

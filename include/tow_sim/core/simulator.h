@@ -13,6 +13,7 @@
 
 #include "tow_sim/core/chain_model.h"
 #include "tow_sim/core/chain_solver.h"
+#include "tow_sim/core/fins.h"
 #include "tow_sim/core/implicit_stepper.h"
 #include "tow_sim/core/rosenbrock_tableau.h"
 
@@ -115,6 +116,20 @@ struct StepReport
   double max_strain = -std::numeric_limits<double>::infinity();
 };
 
+// What the simulator holds between steps (a saved state): enough to go on bit-identically. The model, the
+// ship and the environment (currents, the sea's clock) are the caller's, not part of it.
+struct SimulatorState
+{
+  double t = 0.0;         // [s]
+  double dt = 0.0;        // [s] the adaptive steppers' next step
+  int segments = 0;       // nu now (the winch changes it)
+  std::vector<double> y;  // StateLayout for segments + 1 joints
+  FinServo::State rudder, elevator;
+  double thrust = 0.0;         // [N] as saturated
+  double winch_command = 0.0;  // [m/s]
+  std::vector<char> slack;     // elastic cable: each segment slack (empty: none counted yet)
+};
+
 class Simulator
 {
 public:
@@ -140,6 +155,13 @@ public:
   // the cable cannot have (no segment or more than 100000, a first segment not longer than 0, cable out
   // beyond the winch's limits while it is enabled, or other than the configured cable without the winch).
   void restoreLayout(int segments, double cable_out);
+
+  // The state now, and back: restoreState() takes the layout (as restoreLayout, whose errors it throws), the
+  // state vector, time, step and actuators as they were, without projecting, so that advancing from it is
+  // bit-identical to advancing from where it was taken. Throws std::invalid_argument (naming the field) for a
+  // state of the wrong size or with a non-finite value; nothing changes then.
+  SimulatorState saveState() const;
+  void restoreState(const SimulatorState& state);
 
   // The right-hand side dy/dt at (t, y) for the current data: no side effect (only the solver's
   // workspace changes), so equal arguments give bit-identical results whatever was evaluated before.

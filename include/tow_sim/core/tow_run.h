@@ -38,11 +38,13 @@ struct InitialShape
     kEquilibrium,  // the steady tow at the ship's velocity then (default)
     kLine,         // straight from the tow point along line_direction_S
     kHanging,      // straight down
-    kPoints        // the given joints (world)
+    kPoints,       // the given joints (world)
+    kFile          // a saved state (saved_state.h) at `path`: TowRun::restore() it; start() cannot
   };
   Type type = Type::kEquilibrium;
   Eigen::Vector3d line_direction_S = Eigen::Vector3d(-1.0, 0.0, -0.5);  // ship frame (FLU), turned by the heading
   Eigen::Matrix3Xd points;                                              // joints x_2 .. x_{nu+2}, for kPoints
+  std::string path;                                                     // the saved state, for kFile
 };
 
 // Every output of the run at one instant (SI units, world ENU frame unless stated).
@@ -94,6 +96,30 @@ TowSnapshot interpolate(const TowSnapshot& a, const TowSnapshot& b, double t);
 double tickTarget(double now, double wanted, double available, double step, double cost, double max_sim,
                   double max_wall);
 
+// A run's saved state (saved_state.h reads and writes it as text): the simulator's, where the ship was, the
+// outputs' running maxima and counters, the attitude's held heading and the autopilot's. Not in it: the
+// model and configuration, the ship's motion, the environment and the schedule (the caller's, as the
+// scenario or the node has them).
+struct RunState
+{
+  SimulatorState sim;
+  ShipEndState tow_point;                                // x_1 at sim.t (world)
+  double heading = 0.0;                                  // [rad] the ship's at sim.t
+  long ticks = 0;                                        // the autopilot's next tick (its index)
+  long snap_count = 0;                                   // since the run started
+  double max_strain = 0.0;                               // [-] since the last snapshot (-inf: none yet)
+  double max_length_error = 0.0;                         // [-] likewise
+  ValueRange tension_ship_range, tension_vehicle_range;  // [N] likewise
+  double attitude_heading = 0.0;                         // [rad] AttitudeHold's held yaw; NaN: none held
+  std::optional<DepthAutopilotState> autopilot;
+};
+
+// A state carried to another time and ship pose (tow_sim_node's ~load_state): the cable's shape and
+// velocities relative to the tow point turned about the vertical by the change of heading, at the tow point
+// `tow_point` at time t [s], the fin servos' and the autopilot's clocks shifted by as much as the time. The
+// batch restores a state as it is (bit-identical); this is for a run on another ship track.
+RunState relocate(const RunState& state, double t, const ShipEndState& tow_point, double heading);
+
 class TowRun
 {
 public:
@@ -108,6 +134,15 @@ public:
   // Returns a warning when it had to fall back (no equilibrium: a straight line), else "".
   std::string start(double t);
   bool started() const { return started_; }
+
+  // The state now (std::logic_error before start()), and a start from a saved one instead of start(): the
+  // simulator as it was, the schedule's commands and setpoints due by its time taken as done (the actuators
+  // and the autopilot are the state's), the autopilot (if this run has one; its state's if saved with one,
+  // else afresh with the setpoints due) ticking on. Advancing then is bit-identical to advancing the run the
+  // state was saved from. Throws std::invalid_argument (naming the field) for a state that does not fit this
+  // run; nothing changes then.
+  RunState saveState() const;
+  void restore(const RunState& state);
 
   // Commands due later, applied in time order as the run passes them (sorted here); after start(), those
   // before the run's time act at once.

@@ -9,6 +9,8 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <cmath>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -88,6 +90,13 @@ public:
   Eigen::Quaterniond update(const Eigen::Vector3d& x_b_W);               // the body's forward axis, world
   void reset() { has_heading_ = false; }
   double cone() const { return cone_; }
+  // The held yaw [rad] (a saved state); NaN: none held.
+  double heldHeading() const { return has_heading_ ? heading_ : std::numeric_limits<double>::quiet_NaN(); }
+  void restoreHeading(double heading)
+  {
+    has_heading_ = std::isfinite(heading);
+    heading_ = has_heading_ ? heading : 0.0;
+  }
 
 private:
   double cone_;

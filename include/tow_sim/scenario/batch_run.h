@@ -29,8 +29,13 @@ struct BatchResult
 
 // Runs the scenario, writing the headers and a row per output interval (shapes every shape interval and at
 // the end). Throws std::runtime_error when the run diverges; `result` then says how far the rows go.
-// `progress` (may be empty) is called with each output time.
+// `progress` (may be empty) is called with each output time. A scenario starting from a saved state
+// (initial_state type file) starts at the state's time, its first row the first output time from then on;
+// continuing a state saved at an output time of the same scenario gives the very rows the uninterrupted run
+// wrote from that time on. `save_state` (may be empty) gets the run's state at each of save_state_at, taken
+// before that time's row.
+using SaveStateSink = std::function<void(double t, const RunState& state)>;
 void runScenario(const Scenario& scenario, std::ostream& series, std::ostream& shapes, BatchResult& result,
-                 const std::function<void(double t)>& progress = {});
+                 const std::function<void(double t)>& progress = {}, const SaveStateSink& save_state = {});
 
 }  // namespace tow_sim

@@ -69,8 +69,9 @@ struct Scenario
   AutopilotLoop autopilot;  // the depth autopilot in the loop: gains, rate, setpoints; drives the fins when enabled
   InitialShape initial;     // equilibrium (default), line (direction in the ship frame) or points (world)
   double duration = 600.0;  // [s]
-  double output_interval = 1.0;  // [s] timeseries.csv
-  double shape_interval = 60.0;  // [s] shapes.csv
+  double output_interval = 1.0;       // [s] timeseries.csv
+  double shape_interval = 60.0;       // [s] shapes.csv
+  std::vector<double> save_state_at;  // [s] output times at which the run's state is saved (sorted)
 };
 
 // Reads a scenario; throws std::invalid_argument naming the key, the value and the allowed range.
