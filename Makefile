@@ -22,7 +22,7 @@ export UBSAN_OPTIONS := halt_on_error=1:print_stacktrace=1
 # rviz opens when there is a display; without one the demo runs headless and prints a status line each second.
 RVIZ ?= $(if $(DISPLAY),true,false)
 MANOEUVRE ?= turn
-# Wall-time length of the odometry soak rostest in make test (.ci/run sets 600, the issue's 10 minutes).
+# Wall-time length of the odometry soak rostest in make test (make soak runs it for the full 10 minutes).
 SOAK_SECONDS ?= 120
 export TOW_SIM_SOAK_SECONDS := $(SOAK_SECONDS)
 
