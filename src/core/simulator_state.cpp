@@ -1,5 +1,6 @@
 // The Simulator's saved state: taken and given back whole, so that a restored run steps on bit-identically.
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -56,12 +57,25 @@ void Simulator::restoreState(const SimulatorState& s)
   requireFinite("elevator", s.elevator);
   requireFinite("thrust", s.thrust);
   requireFinite("winch_command", s.winch_command);
-  if (!winch_.enabled && s.winch_command != 0.0)
-    throw std::invalid_argument("saved state: winch_command is not 0 but this run has no winch (winch.enabled)");
+  if (!winch_.enabled && (s.winch_command != 0.0 || L.payoutRate(s.y) != 0.0))
+    throw std::invalid_argument(
+        "saved state: the winch runs (a payout command or rate) but this run has no winch "
+        "(winch.enabled)");
   if (!s.slack.empty() && s.slack.size() != static_cast<std::size_t>(s.segments))
     throw std::invalid_argument("saved state: slack has " + std::to_string(s.slack.size()) + " flags for " +
                                 std::to_string(s.segments) + " segments");
-  restoreLayout(s.segments, L.cableOut(s.y));
+  try
+  {
+    restoreLayout(s.segments, L.cableOut(s.y));
+  }
+  catch (const std::invalid_argument&)
+  {
+    std::ostringstream os;
+    os << "saved state: " << s.segments << " segments and " << L.cableOut(s.y)
+       << " m of cable out do not fit this cable (cable.segments " << model_->segments() << ", cable.length "
+       << model_->cableLength() << " m, winch " << (winch_.enabled ? "on" : "off") << ")";
+    throw std::invalid_argument(os.str());
+  }
   t_ = s.t;
   dt_ = s.dt;
   y_ = s.y;

@@ -105,6 +105,8 @@ TowSimNode::TowSimNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   reset_srv_ = pnh_.advertiseService("reset", &TowSimNode::onReset, this);
   pause_srv_ = pnh_.advertiseService("set_paused", &TowSimNode::onSetPaused, this);
   plan_srv_ = pnh_.advertiseService("plan_cable_out", &TowSimNode::onPlanCableOut, this);
+  save_srv_ = pnh_.advertiseService("save_state", &TowSimNode::onSaveState, this);
+  load_srv_ = pnh_.advertiseService("load_state", &TowSimNode::onLoadState, this);
   setUpReconfigure();
   physics_timer_ = nh_.createTimer(ros::Duration(1.0 / params_.physics_rate), [this](const ros::TimerEvent& e)
                                    { guarded("physics tick", [&] { physicsTick(e); }); });
@@ -162,6 +164,11 @@ void TowSimNode::start(double t)
   const std::string warning = run_.start(t);
   if (!warning.empty())
     ROS_WARN_THROTTLE(5.0, "tow_sim: %s", warning.c_str());
+  afterStart();
+}
+
+void TowSimNode::afterStart()
+{
   // The sea runs on ROS time (ship_motion_node's ship heaves in the same waves): run time t is ROS time
   // time_origin + t.
   run_.setWaveTime(static_cast<double>(time_origin_ns_) * 1e-9);

@@ -222,7 +222,7 @@ TEST(SavedState, AStateThatDoesNotFitTheRunIsRefusedWithNothingChanged)
     EXPECT_EQ(target.time(), 5.0);
     EXPECT_EQ(target.simulator().stateVector(), before);
   };
-  refuse(saved, "50 segments");
+  refuse(saved, "50 segments and 300 m of cable out do not fit this cable (cable.segments 20");
   RunState bad = saved;
   bad.sim.segments = 20;
   refuse(bad, "y has 308 values; 20 segments need 128");
@@ -235,6 +235,9 @@ TEST(SavedState, AStateThatDoesNotFitTheRunIsRefusedWithNothingChanged)
   bad = saved;
   bad.sim.winch_command = 0.2;
   EXPECT_THROW(fits.restore(bad), std::invalid_argument);  // no winch in turn_180
+  bad = saved;
+  bad.sim.y.back() = 0.3;  // a payout rate
+  EXPECT_THROW(fits.restore(bad), std::invalid_argument);
   bad = saved;
   bad.sim.dt = 0.0;
   EXPECT_THROW(fits.restore(bad), std::invalid_argument);

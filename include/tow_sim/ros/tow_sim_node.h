@@ -24,6 +24,7 @@
 #include "tow_sim/CurrentProfile.h"
 #include "tow_sim/FinCommand.h"
 #include "tow_sim/PlanCableOut.h"
+#include "tow_sim/StateFile.h"
 #include "tow_sim/TowSimConfig.h"
 #include "tow_sim/config/config.h"
 #include "tow_sim/config/node_params.h"
@@ -53,6 +54,10 @@ private:
   // and current; with `execute`, the winch goes to the planned cable out (driveWinch, each physics tick).
   bool onPlanCableOut(tow_sim::PlanCableOut::Request& req, tow_sim::PlanCableOut::Response& res);
   void driveWinch();
+  // ~save_state and ~load_state (tow_sim_node_state.cpp): the run's state to a file, and a saved one carried
+  // to the ship's pose now (relocate) and continued; a refused file changes nothing.
+  bool onSaveState(tow_sim::StateFile::Request& req, tow_sim::StateFile::Response& res);
+  bool onLoadState(tow_sim::StateFile::Request& req, tow_sim::StateFile::Response& res);
   // Live settings (tow_sim_node_reconfigure.cpp, cfg/TowSim.cfg): validated like the start-up parameters;
   // a refused change is answered with the old values (c is set back to them).
   void setUpReconfigure();
@@ -71,6 +76,7 @@ private:
   void printStatus();  // the status line (print_status)
 
   void start(double t);  // the initial shape at the ship's pose at time t (relative)
+  void afterStart();     // a new run (started or restored): the sea's clock, trails and outputs afresh
   void restartAfterDivergence(const std::string& why);
   void integrateTo(double target);          // [s] relative time; restarts after a divergence; diagnostics
   void recordStep();                        // after_ (and before_ the previous after_) from the run now
@@ -133,7 +139,7 @@ private:
   ros::Publisher state_pub_, marker_pub_, vehicle_odom_pub_, fin_loads_pub_;
   ros::Publisher ship_force_pub_, vehicle_force_pub_;  // the cable's forces on the ship and the vehicle
   ros::Publisher joint_state_pub_;                     // the fin angles, for robot_state_publisher (URDF)
-  ros::ServiceServer reset_srv_, pause_srv_, plan_srv_;
+  ros::ServiceServer reset_srv_, pause_srv_, plan_srv_, save_srv_, load_srv_;
   std::optional<double> winch_target_;  // [m] a planned cable out the winch is going to (cleared on arrival
                                         // or by a winch/command)
   ros::Timer physics_timer_, publish_timer_, status_timer_;

@@ -1,0 +1,82 @@
+// tow_sim_node's saved states: ~save_state writes the run's state (saved_state.h), ~load_state carries a
+// saved one to the ship's pose now and goes on from it.
+#include <cstdio>
+#include <exception>
+#include <string>
+
+#include "tow_sim/core/saved_state.h"
+#include "tow_sim/ros/tow_sim_node.h"
+
+namespace tow_sim
+{
+namespace
+{
+std::string timeText(double t)
+{
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.3f", t);
+  return buffer;
+}
+}  // namespace
+
+bool TowSimNode::onSaveState(tow_sim::StateFile::Request& req, tow_sim::StateFile::Response& res)
+{
+  res.success = false;
+  if (req.path.empty())
+    res.message = "path: must name the file to write";
+  else if (!started_)
+    res.message = "no run to save yet (no ship odometry)";
+  else
+  {
+    try
+    {
+      writeRunState(req.path, run_.saveState());
+      res.success = true;
+      res.message = "saved the state at t = " + timeText(absolute(run_.time()).toSec()) + " s to " + req.path;
+      ROS_INFO("tow_sim: %s", res.message.c_str());
+    }
+    catch (const std::exception& e)
+    {
+      res.message = e.what();
+    }
+  }
+  if (!res.success)
+    ROS_WARN("tow_sim: ~save_state refused: %s", res.message.c_str());
+  return true;
+}
+
+bool TowSimNode::onLoadState(tow_sim::StateFile::Request& req, tow_sim::StateFile::Response& res)
+{
+  res.success = false;
+  if (req.path.empty())
+    res.message = "path: must name a saved state file";
+  else if (ship_->empty())
+    res.message = "no ship odometry yet: a state is placed at the ship";
+  else
+  {
+    try
+    {
+      // The saved shape relative to the tow point, turned with the ship's heading, at the run's time now.
+      const double t = started_ ? run_.time() : ship_->newestTime();
+      const RunState saved = readRunState(req.path);
+      run_.restore(relocate(saved, t, ship_->towPoint(t), ship_->pose(t).heading));  // refused: nothing changed
+      diverging_ = false;
+      restart_walls_.clear();
+      winch_target_.reset();
+      afterStart();
+      res.success = true;
+      res.message = "loaded " + req.path + " (saved at run time " + timeText(saved.sim.t) +
+                    " s) at t = " + timeText(absolute(t).toSec()) + " s, placed at the ship's pose now";
+      ROS_INFO("tow_sim: %s", res.message.c_str());
+    }
+    catch (const std::exception& e)
+    {
+      res.message = e.what();
+    }
+  }
+  if (!res.success)
+    ROS_WARN("tow_sim: ~load_state refused: %s", res.message.c_str());
+  return true;
+}
+
+}  // namespace tow_sim
