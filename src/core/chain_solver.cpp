@@ -38,6 +38,17 @@ void ChainSolver::solve(const ChainModel& model, const ChainGeometry& geometry, 
   sweep_.solve(terms_, ship.a_W, a, tensions, multipliers);
 }
 
+Eigen::Vector3d ChainSolver::solveFree(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data,
+                                       double t, const ShipEndState& first, const Eigen::Ref<const Eigen::Matrix3Xd>& x,
+                                       const Eigen::Ref<const Eigen::Matrix3Xd>& v, Eigen::Ref<Eigen::Matrix3Xd> a,
+                                       Eigen::Matrix3Xd* tensions, std::vector<double>* multipliers)
+{
+  terms_.resize(static_cast<size_t>(geometry.elementCount()));
+  elementTerms(model, geometry, data, t, first, x, v);
+  sweep_.factor(terms_);
+  return sweep_.solveFree(terms_, a, tensions, multipliers);
+}
+
 // (S1)-(S6): each element's loads (ChainModel::elementDynamics) and its Newton-Euler equations projected
 // onto its forward and aft joint accelerations.
 void ChainSolver::elementTerms(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data, double t,
@@ -130,6 +141,23 @@ void ChainSweep::factor(const std::vector<ElementTerms>& terms)
 void ChainSweep::solve(const std::vector<ElementTerms>& terms, const Eigen::Vector3d& a_first,
                        Eigen::Ref<Eigen::Matrix3Xd> a, Eigen::Matrix3Xd* tensions, std::vector<double>* multipliers)
 {
+  loads(terms);
+  forward(terms, a_first, a, tensions, multipliers);
+}
+
+// (S22): nothing pulls on the first joint, T_1 = K_1 a_1 + tau_1 = 0. K_1, the apparent inertia of the whole
+// chain at that joint, is regular when its elements have mass.
+Eigen::Vector3d ChainSweep::solveFree(const std::vector<ElementTerms>& terms, Eigen::Ref<Eigen::Matrix3Xd> a,
+                                      Eigen::Matrix3Xd* tensions, std::vector<double>* multipliers)
+{
+  loads(terms);
+  const Eigen::Vector3d a_first = -factors_.front().K.partialPivLu().solve(tau_.front());
+  forward(terms, a_first, a, tensions, multipliers);
+  return a_first;
+}
+
+void ChainSweep::loads(const std::vector<ElementTerms>& terms)
+{
   const size_t n = terms.size();
   phi_.resize(n);
   tau_.resize(n);
@@ -147,6 +175,14 @@ void ChainSweep::solve(const std::vector<ElementTerms>& terms, const Eigen::Vect
     tau_[i] = m.M_fa * phi_[i] - m.h_f + eta_[i] * m.s;                            // (S13)
     tau_aft = tau_[i];
   }
+}
+
+void ChainSweep::forward(const std::vector<ElementTerms>& terms, const Eigen::Vector3d& a_first,
+                         Eigen::Ref<Eigen::Matrix3Xd> a, Eigen::Matrix3Xd* tensions, std::vector<double>* multipliers)
+{
+  const size_t n = terms.size();
+  if (tensions)
+    tensions->resize(3, static_cast<Eigen::Index>(n));  // no-op when sized already
   if (multipliers)
     multipliers->resize(n);
   Eigen::Vector3d a_f = a_first;

@@ -40,7 +40,8 @@ struct ChainGeometry
 
   int elementCount() const { return segments + 1; }  // nu + 1
   int jointCount() const { return segments + 1; }    // unknown joints x_2 .. x_{nu+2}
-  double elementLength(int e) const { return e == 0 ? first_length : (e < segments ? nominal_length : end_length); }
+  // (A free end body alone, a parted cable's vehicle side, has no segment: segments = 0.)
+  double elementLength(int e) const { return e < segments ? (e == 0 ? first_length : nominal_length) : end_length; }
   double cableLength() const { return first_length + (segments - 1) * nominal_length; }  // [m] cable out
   double totalLength() const { return cableLength() + end_length; }
 };

@@ -46,8 +46,16 @@ public:
   // not null, the tension at each element's forward joint and the axial multiplier mu (compression positive).
   void solve(const std::vector<ElementTerms>& terms, const Eigen::Vector3d& a_first, Eigen::Ref<Eigen::Matrix3Xd> a,
              Eigen::Matrix3Xd* tensions = nullptr, std::vector<double>* multipliers = nullptr);
+  // The same for a free first joint (nothing pulls on it: the end of a parted cable): T = K a + tau = 0
+  // there gives its acceleration (S22), returned; then the forward sweep from it (its tension is zero).
+  Eigen::Vector3d solveFree(const std::vector<ElementTerms>& terms, Eigen::Ref<Eigen::Matrix3Xd> a,
+                            Eigen::Matrix3Xd* tensions = nullptr, std::vector<double>* multipliers = nullptr);
 
 private:
+  void loads(const std::vector<ElementTerms>& terms);  // the vector pass (S9)-(S13)
+  void forward(const std::vector<ElementTerms>& terms, const Eigen::Vector3d& a_first, Eigen::Ref<Eigen::Matrix3Xd> a,
+               Eigen::Matrix3Xd* tensions, std::vector<double>* multipliers);  // (S14)
+
   struct Factor
   {
     Eigen::Matrix3d A_inv;  // the aft joint's regularised inertia, inverted (S9)
@@ -74,6 +82,14 @@ public:
              const Eigen::Ref<const Eigen::Matrix3Xd>& v, Eigen::Ref<Eigen::Matrix3Xd> a,
              Eigen::Matrix3Xd* tensions = nullptr, std::vector<double>* multipliers = nullptr);
 
+  // A chain whose first joint is free instead of following the ship (the vehicle side of a parted cable, its
+  // geometry's segments those aft of the break, 0 for the end body alone): `first` holds that joint's
+  // position and velocity (its acceleration is ignored); x, v, a, tensions and multipliers as solve() for
+  // the joints aft of it. Returns the first joint's acceleration (S22); T_1 = 0.
+  Eigen::Vector3d solveFree(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data, double t,
+                            const ShipEndState& first, const Eigen::Ref<const Eigen::Matrix3Xd>& x,
+                            const Eigen::Ref<const Eigen::Matrix3Xd>& v, Eigen::Ref<Eigen::Matrix3Xd> a,
+                            Eigen::Matrix3Xd* tensions = nullptr, std::vector<double>* multipliers = nullptr);
   // The element equations of the last solve (the implicit stepper linearises around them).
   const std::vector<ElementTerms>& terms() const { return terms_; }
 
