@@ -8,6 +8,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <fstream>
@@ -62,19 +63,30 @@ int runAndReport(const Scenario& sc, const std::string& out_dir, std::ostream& s
   Progress progress(sc.duration);
   BatchResult result;
   std::vector<std::string> saved;
-  auto save = [&out_dir, &saved](double t, const RunState& state)
+  bool unwritten = false;
+  auto save = [&out_dir, &saved, &unwritten](double t, const RunState& state)
   {
     char name[64];
     std::snprintf(name, sizeof name, "/state_%g.txt", t);
-    writeRunState(out_dir + name, state);
-    saved.push_back(name + 1);
+    if (std::strtod(name + 7, nullptr) != t)  // %g's six digits would name two times alike
+      std::snprintf(name, sizeof name, "/state_%.17g.txt", t);
+    try
+    {
+      writeRunState(out_dir + name, state);
+      saved.push_back(name + 1);
+    }
+    catch (const std::exception& e)
+    {
+      std::fprintf(stderr, "tow_sim_batch: %s\n", e.what());
+      unwritten = true;
+    }
   };
   try
   {
     runScenario(
         sc, series, shapes, result, [&progress](double t) { progress.update(t); }, save);
   }
-  catch (const std::invalid_argument& e)
+  catch (const BadInitialState& e)
   {
     progress.finish();
     std::fprintf(stderr, "tow_sim_batch: bad initial state: %s\n", e.what());
@@ -99,7 +111,7 @@ int runAndReport(const Scenario& sc, const std::string& out_dir, std::ostream& s
     states += ", " + name;
   std::printf("tow_sim_batch: %.0f s simulated; wrote %s/timeseries.csv (%ld rows), shapes.csv, scenario.yaml%s\n",
               sc.duration, out_dir.c_str(), result.rows, states.c_str());
-  return 0;
+  return unwritten ? 4 : 0;
 }
 }  // namespace
 

@@ -43,8 +43,11 @@ Eigen::Vector3d ChainSolver::solveFree(const ChainModel& model, const ChainGeome
                                        const Eigen::Ref<const Eigen::Matrix3Xd>& v, Eigen::Ref<Eigen::Matrix3Xd> a,
                                        Eigen::Matrix3Xd* tensions, std::vector<double>* multipliers)
 {
-  terms_.resize(static_cast<size_t>(geometry.elementCount()));
-  elementTerms(model, geometry, data, t, first, x, v);
+  // No winch pays out a free chain: its first element keeps its length (whatever the geometry it came from).
+  ChainGeometry free_geometry = geometry;
+  free_geometry.first_rate = free_geometry.first_acceleration = 0.0;
+  terms_.resize(static_cast<size_t>(free_geometry.elementCount()));
+  elementTerms(model, free_geometry, data, t, first, x, v);
   sweep_.factor(terms_);
   return sweep_.solveFree(terms_, a, tensions, multipliers);
 }

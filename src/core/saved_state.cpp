@@ -178,7 +178,9 @@ std::vector<double> parseNumbers(std::istringstream& in, const Fields& f, int li
     errno = 0;
     char* end = nullptr;
     const double v = std::strtod(token.c_str(), &end);
-    if (end == token.c_str() || *end != '\0' || errno == ERANGE)
+    // ERANGE also flags a subnormal, which %.17g writes and strtod reads back exactly: only an overflow
+    // (a number beyond the doubles) is refused.
+    if (end == token.c_str() || *end != '\0' || (errno == ERANGE && std::isinf(v)))
       f.fail("line " + std::to_string(line) + ": '" + token + "' is not a number");
     values.push_back(v);
   }
@@ -192,6 +194,7 @@ std::string runStateText(const RunState& s)
   w.put(kMagic, kFormat);
   const SimulatorState& sim = s.sim;
   w.put("t", sim.t);
+  w.put("reached", s.reached);
   w.put("dt", sim.dt);
   w.put("segments", sim.segments);
   w.put("y", sim.y);
@@ -244,6 +247,7 @@ RunState parseRunState(const std::string& text, const std::string& source)
   RunState s;
   SimulatorState& sim = s.sim;
   sim.t = f.number("t");
+  s.reached = f.number("reached");
   sim.dt = f.number("dt");
   sim.segments = static_cast<int>(f.integer("segments", 1, 100000));
   sim.y = f.take("y", 6 * static_cast<std::size_t>(sim.segments + 1) + 2);

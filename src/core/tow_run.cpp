@@ -186,6 +186,7 @@ std::string TowRun::start(double t)
   max_strain_ = -std::numeric_limits<double>::infinity();
   tension_ship_range_ = tension_vehicle_range_ = ValueRange();
   started_ = true;
+  reached_ = t;
   return warning;
 }
 
@@ -267,6 +268,7 @@ StepReport TowRun::advanceTo(double t)
       autopilotTick(t_next);
   }
   integrate(t);
+  reached_ = t;
   return total;
 }
 
@@ -370,6 +372,7 @@ RunState TowRun::saveState() const
     throw std::logic_error("TowRun::saveState before start()");
   RunState s;
   s.sim = sim_.saveState();
+  s.reached = reached_;
   s.tow_point = sim_.shipEnd();
   s.heading = ship_->pose(time()).heading;
   s.ticks = ticks_;
@@ -392,16 +395,51 @@ void requireFinite(const std::string& field, double value)
     throw std::invalid_argument("saved state: " + field + " must be finite, got " + std::to_string(value));
 }
 
-void validate(const DepthAutopilotState& a)
+void requireNotAfter(const std::string& field, double value, double reached)
 {
-  requireFinite("autopilot.setpoint", a.setpoint);
-  requireFinite("autopilot.altitude_setpoint", a.altitude_setpoint);
-  requireFinite("autopilot.vehicle.t", a.vehicle.t);
+  requireFinite(field, value);
+  if (value > reached + 1e-9 * std::max(1.0, std::abs(reached)))
+    throw std::invalid_argument("saved state: " + field + " = " + std::to_string(value) +
+                                " s is after the state's time " + std::to_string(reached) + " s");
+}
+
+void requireNotInfinite(const std::string& field, double value)
+{
+  if (std::isinf(value))
+    throw std::invalid_argument("saved state: " + field + " must be finite or NaN (unknown)");
+}
+
+void validate(const DepthAutopilotState& a, double max_depth, double reached)
+{
+  if (!(a.setpoint >= 0.0 && a.setpoint <= max_depth) ||
+      !(a.altitude_setpoint >= 0.0 && a.altitude_setpoint <= max_depth))
+    throw std::invalid_argument("saved state: autopilot.setpoint and altitude_setpoint must be in [0, max_depth = " +
+                                std::to_string(max_depth) + "] [m]");
+  requireNotAfter("autopilot.vehicle.t", a.vehicle.t, reached);
+  requireNotAfter("autopilot.integrated_until", a.integrated_until, reached);
   if (!a.vehicle.p_W.allFinite() || !a.vehicle.v_W.allFinite())
     throw std::invalid_argument("saved state: autopilot.vehicle position and velocity must be finite");
-  requireFinite("autopilot.integrated_until", a.integrated_until);
+  requireNotInfinite("autopilot.vehicle altitude", a.vehicle.altitude);
+  requireNotInfinite("autopilot.vehicle cable out", a.vehicle.cable_out);
+  requireNotInfinite("autopilot.vehicle received", a.vehicle.received);
+  if (!std::isnan(a.cable_out_base) && !(a.cable_out_base > 0.0 && std::isfinite(a.cable_out_base)))
+    throw std::invalid_argument("saved state: the autopilot's cable out base must be > 0 m or NaN (none)");
   requireFinite("autopilot.integral", a.integral);
   requireFinite("autopilot.winch_integral", a.winch_integral);
+}
+
+void validateOutputs(const RunState& s)
+{
+  requireFinite("reached", s.reached);
+  if (std::abs(s.reached - s.sim.t) > 1e-6 * std::max(1.0, std::abs(s.reached)))
+    throw std::invalid_argument("saved state: reached = " + std::to_string(s.reached) +
+                                " s is not the state's t = " + std::to_string(s.sim.t) + " s");
+  if (!(s.max_length_error >= 0.0) || std::isnan(s.max_strain) || std::isnan(s.tension_ship_range.min) ||
+      std::isnan(s.tension_ship_range.max) || std::isnan(s.tension_vehicle_range.min) ||
+      std::isnan(s.tension_vehicle_range.max))
+    throw std::invalid_argument(
+        "saved state: max_length_error must be >= 0, max_strain and the tension ranges "
+        "not NaN");
 }
 }  // namespace
 
@@ -409,12 +447,13 @@ void TowRun::restore(const RunState& s)
 {
   if (ship_->empty())
     throw std::invalid_argument("TowRun::restore: no ship sample yet");
+  validateOutputs(s);
   if (s.autopilot)
-    validate(*s.autopilot);
+    validate(*s.autopilot, autopilot_loop_.params.max_depth, s.reached);
   if (s.snap_count < 0 || s.ticks < 0)
     throw std::invalid_argument("saved state: ticks and snap_count must not be negative");
   sim_.restoreState(s.sim);  // checks everything before it changes anything
-  const double t = s.sim.t;
+  const double t = s.reached;
   // The schedule as it stands after t: what was due by then has acted (the state holds its effect).
   next_command_ = 0;
   while (next_command_ < commands_.size() && commands_[next_command_].t <= t)
@@ -439,6 +478,7 @@ void TowRun::restore(const RunState& s)
   tension_vehicle_range_ = s.tension_vehicle_range;
   attitude_.restoreHeading(s.attitude_heading);
   started_ = true;
+  reached_ = s.reached;
 }
 
 RunState relocate(const RunState& state, double t, const ShipEndState& tow_point, double heading)
@@ -465,6 +505,7 @@ RunState relocate(const RunState& state, double t, const ShipEndState& tow_point
     v.col(j) = w;
   }
   s.sim.t = t;
+  s.reached += dt;
   s.sim.rudder.t0 += dt;
   s.sim.elevator.t0 += dt;
   s.tow_point = tow_point;

@@ -56,6 +56,34 @@ std::string shapesRows(const TowSnapshot& s)
   return rows.str();
 }
 
+namespace
+{
+// The run from the scenario's saved state; returns the index of its first output.
+long restoreInitialState(const Scenario& sc, const ShipHistory& ship, TowRun& run, BatchResult& result)
+{
+  RunState state = readRunState(sc.initial.path);
+  const double t = state.reached;
+  if (!(t >= 0.0 && t <= sc.duration))
+    throw std::invalid_argument("the state's time " + std::to_string(t) +
+                                " s is not within the run's [0, simulation.duration = " + std::to_string(sc.duration) +
+                                " s]");
+  const ShipEndState tow = ship.towPoint(state.sim.t);
+  const double heading = ship.pose(state.sim.t).heading;
+  const double moved = (state.tow_point.p_W - tow.p_W).norm();
+  const double turned = std::abs(std::remainder(state.heading - heading, 2.0 * M_PI));
+  if (moved > 1e-9 * std::max(1.0, tow.p_W.norm()) || turned > 1e-12)
+  {
+    state = relocate(state, state.sim.t, tow, heading);
+    std::ostringstream os;
+    os << "initial_state: the state was saved with the tow point " << moved << " m away and the heading " << turned
+       << " rad off this scenario's ship: placed behind it at t = " << t << " s";
+    result.start_warning = os.str();
+  }
+  run.restore(state);
+  return static_cast<long>(std::ceil(t / sc.output_interval - 1e-9));
+}
+}  // namespace
+
 void runScenario(const Scenario& sc, std::ostream& series, std::ostream& shapes, BatchResult& result,
                  const std::function<void(double t)>& progress, const SaveStateSink& save_state)
 {
@@ -79,13 +107,14 @@ void runScenario(const Scenario& sc, std::ostream& series, std::ostream& shapes,
   long first = 0;
   if (sc.initial.type == InitialShape::Type::kFile)
   {
-    const RunState state = readRunState(sc.initial.path);
-    if (!(state.sim.t >= 0.0 && state.sim.t <= sc.duration))
-      throw std::invalid_argument(
-          "initial_state.path: the state's time " + std::to_string(state.sim.t) +
-          " s is not within the run's [0, simulation.duration = " + std::to_string(sc.duration) + " s]");
-    run.restore(state);
-    first = static_cast<long>(std::ceil(state.sim.t / sc.output_interval - 1e-9));
+    try
+    {
+      first = restoreInitialState(sc, *ship, run, result);
+    }
+    catch (const std::exception& e)
+    {
+      throw BadInitialState("initial_state.path " + sc.initial.path + ": " + e.what());
+    }
   }
   else
     result.start_warning = run.start(0.0);

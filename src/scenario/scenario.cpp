@@ -288,7 +288,6 @@ void readInitialState(Section& top, Scenario& sc, const std::string& base_dir)
 // Each save time an output time within the run (the state is saved where a row is written).
 void checkSaveTimes(Scenario& sc, const std::string& key)
 {
-  std::sort(sc.save_state_at.begin(), sc.save_state_at.end());
   for (double t : sc.save_state_at)
   {
     const double k = t / sc.output_interval;
@@ -296,6 +295,7 @@ void checkSaveTimes(Scenario& sc, const std::string& key)
       fail(key, "must list output times (multiples of output_interval = " + std::to_string(sc.output_interval) +
                     " s) in [0, duration = " + std::to_string(sc.duration) + " s]; got " + std::to_string(t));
   }
+  std::sort(sc.save_state_at.begin(), sc.save_state_at.end());  // after the check: no NaN to sort
 }
 
 Scenario loadScenarioUnguarded(const YAML::Node& root, const std::string& base_dir)

@@ -403,7 +403,7 @@ TEST(Batch, BadScenariosAreRefusedNamingTheKey)
   refuse("initial_state: {type: file, path: no_such_state.txt}",
          "initial_state.path: cannot read " + outputRoot() + "/no_such_state.txt");
   std::ofstream(outputRoot() + "/not_a_state.txt") << "t 5\n";
-  refuse("initial_state: {type: file, path: not_a_state.txt}", "bad initial state: saved state");
+  refuse("initial_state: {type: file, path: not_a_state.txt}", "bad initial state: initial_state.path " + outputRoot());
   int status = 0;
   run(std::string(TOW_SIM_BATCH_BINARY) + " --scenario", &status);
   EXPECT_EQ(status, 2);

@@ -19,6 +19,7 @@
 #include "tow_sim/core/saved_state.h"
 #include "tow_sim/scenario/batch_run.h"
 #include "tow_sim/scenario/scenario.h"
+#include "tow_sim/scenario/ship_path.h"
 
 namespace tow_sim
 {
@@ -132,9 +133,11 @@ TEST(SavedState, TheTextGivesBackTheSameDoubles)
   RunState odd = s;
   odd.max_strain = -std::numeric_limits<double>::infinity();
   odd.attitude_heading = std::numeric_limits<double>::quiet_NaN();
+  odd.sim.y.back() = 4.9e-320;  // a subnormal (a payout rate decaying after a stop): strtod flags ERANGE
   const RunState odd_back = parseRunState(runStateText(odd), "test");
   EXPECT_EQ(odd_back.max_strain, -std::numeric_limits<double>::infinity());
   EXPECT_TRUE(std::isnan(odd_back.attitude_heading));
+  EXPECT_EQ(odd_back.sim.y.back(), 4.9e-320);
 }
 
 void expectRefusal(const std::string& text, const std::string& words)
@@ -244,6 +247,69 @@ TEST(SavedState, AStateThatDoesNotFitTheRunIsRefusedWithNothingChanged)
   EXPECT_EQ(fits.time(), 5.0);
   EXPECT_NO_THROW(fits.restore(saved));
   EXPECT_EQ(fits.time(), saved.sim.t);
+}
+
+TEST(SavedState, EventsAtTheSaveTimeAreNotRepeatedWhenTheSimulatorStoppedShortOfIt)
+{
+  // The steppers may end 1e-12 s short of the target: a setpoint due at the save time has acted all the
+  // same. Here one whose plan is unreachable (NaN) clears the winch's feed-forward base, which the tick at
+  // the same time sets again: applied twice, the base would differ from the uninterrupted run's.
+  Scenario sc = shipped("autopilot_winch");
+  sc.duration = 30.0;
+  sc.autopilot.setpoints = { { 10.0, false, 230.0 } };
+  sc.save_state_at = { 10.0 };
+  AutopilotLoop loop = sc.autopilot;
+  loop.cable_out_plan = [](double, double) { return std::numeric_limits<double>::quiet_NaN(); };
+  auto ship = std::make_shared<ShipHistory>(buildShipPath(sc));
+  TowRun whole(sc.config, ship, sc.initial);
+  whole.setAutopilot(loop);
+  whole.start(0.0);
+  whole.advanceTo(10.0);
+  RunState saved = whole.saveState();
+  saved.sim.t = 10.0 - 1e-12;  // as a stepper ending short of the target leaves it
+  whole.advanceTo(10.5);
+  TowRun restored(sc.config, ship, sc.initial);
+  restored.setAutopilot(loop);
+  restored.restore(saved);
+  restored.advanceTo(10.5);
+  ASSERT_TRUE(whole.saveState().autopilot && restored.saveState().autopilot);
+  EXPECT_EQ(restored.saveState().autopilot->cable_out_base, whole.saveState().autopilot->cable_out_base);
+  EXPECT_EQ(restored.saveState().autopilot->setpoint, 230.0);
+  // A setpoint out of the autopilot's range is refused.
+  RunState bad = whole.saveState();
+  bad.autopilot->setpoint = 1e6;
+  EXPECT_THROW(restored.restore(bad), std::invalid_argument);
+}
+
+TEST(SavedState, AStateFromAnotherShipPoseIsPlacedBehindTheScenariosShip)
+{
+  Scenario sc = shipped("turn_180");
+  sc.duration = 100.0;
+  sc.save_state_at = { 60.0 };
+  const Output whole = run(sc);
+  Scenario elsewhere = sc;
+  elsewhere.save_state_at.clear();
+  elsewhere.start_position += Eigen::Vector2d(1000.0, -500.0);
+  elsewhere.initial.type = InitialShape::Type::kFile;
+  elsewhere.initial.path = test::writeTempFile("saved_elsewhere.txt", runStateText(whole.states.at(60.0)));
+  std::ostringstream series, shapes;
+  BatchResult result;
+  runScenario(elsewhere, series, shapes, result);
+  EXPECT_NE(result.start_warning.find("placed behind it at t = 60 s"), std::string::npos) << result.start_warning;
+  // The same tow relative to the ship: the layback (column 12) and depth (11) of the first row.
+  auto cells = [](const std::string& row)
+  {
+    std::vector<double> v;
+    std::istringstream in(row);
+    std::string cell;
+    while (std::getline(in, cell, ','))
+      v.push_back(cell.empty() ? 0.0 : std::stod(cell));
+    return v;
+  };
+  const std::vector<double> a = cells(from(whole.series, 60.0).front()), b = cells(lines(series.str()).front());
+  EXPECT_NEAR(b[12], a[12], 1e-6);
+  EXPECT_NEAR(b[11], a[11], 1e-6);
+  EXPECT_NEAR(b[5] - b[1], a[5] - a[1], 1e-6);  // vehicle x relative to the ship
 }
 
 // A ship steaming at 2 m/s along `heading` from `start`, sampled each second.

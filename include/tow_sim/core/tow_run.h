@@ -103,6 +103,9 @@ double tickTarget(double now, double wanted, double available, double step, doub
 struct RunState
 {
   SimulatorState sim;
+  // [s] the time the run was advanced to: the events due by it have acted (sim.t may fall short of it by
+  // the steppers' rounding, 1e-12 s)
+  double reached = 0.0;
   ShipEndState tow_point;                                // x_1 at sim.t (world)
   double heading = 0.0;                                  // [rad] the ship's at sim.t
   long ticks = 0;                                        // the autopilot's next tick (its index)
@@ -199,6 +202,7 @@ private:
   double max_strain_ = 0.0;                                // since the last snapshot (-inf: none yet)
   ValueRange tension_ship_range_, tension_vehicle_range_;  // since the last snapshot
   AttitudeHold attitude_;
+  double reached_ = 0.0;  // [s] the time of the last start() or advanceTo()
 };
 
 }  // namespace tow_sim

@@ -5,6 +5,7 @@
 
 #include <functional>
 #include <ostream>
+#include <stdexcept>
 #include <string>
 
 #include "tow_sim/core/tow_run.h"
@@ -34,7 +35,14 @@ struct BatchResult
 // continuing a state saved at an output time of the same scenario gives the very rows the uninterrupted run
 // wrote from that time on. `save_state` (may be empty) gets the run's state at each of save_state_at, taken
 // before that time's row.
+// A state saved with the ship elsewhere (another scenario's, the node's) is placed behind this scenario's ship
+// at its time (relocate(), said in start_warning). A state that cannot be read or does not fit the run throws
+// BadInitialState.
 using SaveStateSink = std::function<void(double t, const RunState& state)>;
+struct BadInitialState : std::invalid_argument
+{
+  using std::invalid_argument::invalid_argument;
+};
 void runScenario(const Scenario& scenario, std::ostream& series, std::ostream& shapes, BatchResult& result,
                  const std::function<void(double t)>& progress = {}, const SaveStateSink& save_state = {});
 
