@@ -97,7 +97,12 @@ TEST(RecordBag, TheDemoRecordsItsOutputs)
     previous_t = std::stod(row[0]);
     ++rows;
   }
-  EXPECT_EQ(rows, n.at("cable/state"));
+  // A row per cable/state message, less those repeating a held state's stamp (the plot says how many).
+  const size_t skipped_at = said.find("messages (");
+  ASSERT_NE(skipped_at, std::string::npos) << said;
+  const int repeats = std::atoi(said.c_str() + skipped_at + 10);
+  EXPECT_EQ(rows, n.at("cable/state") - repeats);
+  EXPECT_LT(repeats, n.at("cable/state") / 10);
   for (const char* png : { "depth_diversion.png", "tensions.png", "plan_view.png", "side_view.png" })
     EXPECT_TRUE(std::ifstream(out + "/" + png).good()) << png;
 }
