@@ -1,7 +1,8 @@
 // tow_sim_batch: runs a scenario faster than real time, without roscore.
 //   tow_sim_batch --scenario FILE.yaml --out DIR
 // Writes DIR/timeseries.csv, DIR/shapes.csv, DIR/scenario.yaml (the scenario with every default
-// filled in) and DIR/state_<t>.txt at each simulation.save_state_at. Exit codes: 0 done; 2 bad arguments,
+// filled in), DIR/events.csv (the cable parting, if it did) and DIR/state_<t>.txt at each
+// simulation.save_state_at. Exit codes: 0 done; 2 bad arguments,
 // scenario or saved initial state; 3 the run diverged (the CSV files then hold the run up to the last good
 // output and the error says so); 4 cannot write DIR.
 #include <sys/stat.h>
@@ -57,6 +58,17 @@ private:
   int next_ = 0;
   bool shown_ = false;
 };
+// events.csv, and the parting said on stdout.
+void writeEvents(const std::string& out_dir, const BatchResult& result)
+{
+  std::ofstream(out_dir + "/events.csv") << eventsHeader() << '\n' << eventsRows(result);
+  if (result.parting)
+    std::printf(
+        "tow_sim_batch: the cable parted at t = %.3f s at joint %d (1: the tow point) under %.0f N; the "
+        "vehicle side goes on with a free end (events.csv)\n",
+        result.parting->t, result.parting->joint, result.parting->tension);
+}
+
 // Runs the scenario into the open CSV files and the state files, and says how it went (the exit code).
 int runAndReport(const Scenario& sc, const std::string& out_dir, std::ostream& series, std::ostream& shapes)
 {
@@ -95,6 +107,7 @@ int runAndReport(const Scenario& sc, const std::string& out_dir, std::ostream& s
   catch (const std::exception& e)
   {
     progress.finish();
+    writeEvents(out_dir, result);
     if (!result.start_warning.empty())  // the fallback start is the likeliest cause: say so first
       std::fprintf(stderr, "tow_sim_batch: %s\n", result.start_warning.c_str());
     std::fprintf(stderr,
@@ -104,13 +117,16 @@ int runAndReport(const Scenario& sc, const std::string& out_dir, std::ostream& s
     return 3;
   }
   progress.finish();
+  writeEvents(out_dir, result);
   if (!result.start_warning.empty())
     std::fprintf(stderr, "tow_sim_batch: %s\n", result.start_warning.c_str());
   std::string states;
   for (const std::string& name : saved)
     states += ", " + name;
-  std::printf("tow_sim_batch: %.0f s simulated; wrote %s/timeseries.csv (%ld rows), shapes.csv, scenario.yaml%s\n",
-              sc.duration, out_dir.c_str(), result.rows, states.c_str());
+  std::printf(
+      "tow_sim_batch: %.0f s simulated; wrote %s/timeseries.csv (%ld rows), shapes.csv, scenario.yaml, "
+      "events.csv%s\n",
+      sc.duration, out_dir.c_str(), result.rows, states.c_str());
   return unwritten ? 4 : 0;
 }
 }  // namespace

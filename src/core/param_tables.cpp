@@ -38,6 +38,9 @@ const ParamTable<CableParams>& cableParams()
                           "the node's diagnostics WARN while a tension exceeds it")
           .optionalNumber("breaking_load", &C::breaking_load, "N", 0.0, 1e9, kOpen, "unset",
                           "≥ safe_working_load; the node's diagnostics report an ERROR while a tension exceeds it")
+          .boolean("break_at_breaking_load", &C::break_at_breaking_load,
+                   "the cable parts where a tension first exceeds breaking_load (needs it); the vehicle side goes "
+                   "on with a free end")
           .optionalNumber("axial_stiffness", &C::axial_stiffness, "N", 0.0, 1e11, kOpen, "unset",
                           "EA: set, the cable stretches and carries tension only, T = max(0, EA ε + c ε̇); "
                           "unset, the rigid chain (the report's)")

@@ -127,6 +127,8 @@ void prepareWaves(Environment& env)
 void validate(const CableParams& c, const std::string& p)
 {
   validateParams(cableParams(), c, p);
+  if (c.break_at_breaking_load && !c.breaking_load)
+    throw std::invalid_argument(paramName(p, "break_at_breaking_load") + ": needs " + paramName(p, "breaking_load"));
   if (c.safe_working_load && c.breaking_load)
     requireInRange(paramName(p, "breaking_load"), *c.breaking_load, *c.safe_working_load, 1e9,
                    "[N] (at least safe_working_load)");

@@ -170,6 +170,8 @@ double Simulator::setWinchCommand(double payout_rate)
 {
   if (!winch_.enabled)
     throw std::invalid_argument("winch command: the winch is disabled (winch.enabled: false)");
+  if (free_)
+    throw std::invalid_argument("winch command: the cable has parted");
   if (!std::isfinite(payout_rate))
     throw std::invalid_argument("winch command: the payout rate must be a finite number [m/s]");
   data_.winch_command = std::clamp(payout_rate, -winch_.max_rate, winch_.max_rate);
@@ -206,7 +208,7 @@ double Simulator::winchAcceleration(double length, double rate) const
 ChainGeometry Simulator::geometryOf(const StateVector& y) const
 {
   ChainGeometry g = data_.geometry;
-  if (!winch_.enabled)
+  if (!winch_.enabled || free_)  // parted: the winch has nothing to pay out
     return g;
   const StateLayout L{ g.jointCount() };
   const double length = L.cableOut(y), rate = L.payoutRate(y);
@@ -218,7 +220,7 @@ ChainGeometry Simulator::geometryOf(const StateVector& y) const
 
 bool Simulator::remesh(double t)
 {
-  if (!winch_.enabled)
+  if (!winch_.enabled || free_)
     return false;
   // One pass in one direction: split while the first segment is above the band, or merge while it is
   // below. The first segment's length is carried from split to split (not recomputed from the cable out,
@@ -308,6 +310,8 @@ void Simulator::restoreLayout(int segments, double cable_out)
 
 void Simulator::reset(double t, const ChainState& state)
 {
+  if (free_)
+    throw std::logic_error("reset: the cable has parted: rejoin() it first");
   const StateLayout L = layout();
   if (state.x.cols() != L.joints || state.v.cols() != L.joints)
   {
@@ -337,10 +341,17 @@ void Simulator::reset(double t, const ChainState& state)
 void Simulator::derivative(double t, const StateVector& y, StateVector& dydt) const
 {
   const ChainGeometry geometry = geometryOf(y);
-  const StateLayout L{ geometry.jointCount() };
+  const StateLayout L{ geometry.jointCount(), free_ };
   L.positions(dydt) = L.velocities(y);
   Eigen::Map<Eigen::Matrix3Xd> a = L.velocities(dydt);
-  solver_.solve(*model_, geometry, data_, t, ship_(t), L.positions(y), L.velocities(y), a);
+  if (free_)
+  {
+    L.freePosition(dydt) = L.freeVelocity(y);
+    L.freeVelocity(dydt) =
+        solver_.solveFree(*model_, geometry, data_, t, towPoint(t, y), L.positions(y), L.velocities(y), a);
+  }
+  else
+    solver_.solve(*model_, geometry, data_, t, ship_(t), L.positions(y), L.velocities(y), a);
   L.cableOut(dydt) = winch_.enabled ? L.payoutRate(y) : 0.0;
   L.payoutRate(dydt) = winch_.enabled ? geometry.first_acceleration : 0.0;
 }
@@ -352,8 +363,15 @@ void Simulator::refreshOutputs()
   tensions_.resize(3, L.joints);
   accelerations_.resize(3, L.joints);
   dydt_.resize(L.size());
-  solver_.solve(*model_, data_.geometry, data_, t_, ship_(t_), L.positions(y_), L.velocities(y_), accelerations_,
-                &tensions_, &multipliers_);
+  if (free_)
+  {
+    L.freePosition(dydt_) = L.freeVelocity(y_);
+    L.freeVelocity(dydt_) = solver_.solveFree(*model_, data_.geometry, data_, t_, towPoint(t_, y_), L.positions(y_),
+                                              L.velocities(y_), accelerations_, &tensions_, &multipliers_);
+  }
+  else
+    solver_.solve(*model_, data_.geometry, data_, t_, ship_(t_), L.positions(y_), L.velocities(y_), accelerations_,
+                  &tensions_, &multipliers_);
   L.positions(dydt_) = L.velocities(y_);
   L.velocities(dydt_) = accelerations_;
   L.cableOut(dydt_) = winch_.enabled ? L.payoutRate(y_) : 0.0;
@@ -382,7 +400,7 @@ void Simulator::project(double t)
   data_.geometry = geometryOf(y_);
   auto x = L.positions(y_);
   auto v = L.velocities(y_);
-  const ShipEndState ship = ship_(t);
+  const ShipEndState ship = towPoint(t, y_);
   Eigen::Vector3d x_f = ship.p_W;
   Eigen::Vector3d v_f = ship.v_W;
   // An elastic cable's segments stretch: only its end body has a length to keep.
@@ -408,7 +426,7 @@ void Simulator::project(double t)
 double Simulator::lengthError() const
 {
   const int first = model_->cable().elastic() ? data_.geometry.segments : 0;
-  return maxRelativeLengthError(data_.geometry, ship_(t_).p_W, layout().positions(y_), first);
+  return maxRelativeLengthError(data_.geometry, towPoint(t_, y_).p_W, layout().positions(y_), first);
 }
 
 void Simulator::countSnaps(StepReport& report)
@@ -440,7 +458,7 @@ void Simulator::countSnaps(StepReport& report)
 
 double Simulator::largestRelativeSpeed(double t) const
 {
-  return (layout().velocities(y_).colwise() - ship_(t).v_W).colwise().norm().maxCoeff();
+  return (layout().velocities(y_).colwise() - towPoint(t, y_).v_W).colwise().norm().maxCoeff();
 }
 
 StepReport Simulator::advanceTo(double t_end)
@@ -477,7 +495,7 @@ void Simulator::stepOnce(double t_end, double winch_step, StepReport& report)
     if (!stepImplicit(t_end, winch_step, report))
       return;
   }
-  else if (num.stepper == StepperType::kRk4)
+  else if (stepper() == StepperType::kRk4)
   {
     const double h = std::min({ num.fixed_step, winch_step, t_end - t_ });
     steppers_->rk4.do_step(system, y_, dydt_, t_, h);
@@ -514,16 +532,24 @@ void Simulator::stepOnce(double t_end, double winch_step, StepReport& report)
                                           " m/s relative to the tow point at t = " + std::to_string(t_) + " s"
                                     : "integration diverged: non-finite state at t = " + std::to_string(t_) + " s");
   }
+  acceptStep(report);
+}
+
+void Simulator::acceptStep(StepReport& report)
+{
   ++report.steps;
   data_.geometry = geometryOf(y_);
   report.max_length_error = std::max(report.max_length_error, lengthError());
-  if (remesh(t_))
-    steppers_ = std::make_unique<Steppers>(num);  // new state size: odeint sizes its buffers once
+  const std::size_t size = y_.size();
+  remesh(t_);
   project(t_);
   refreshOutputs();
   report.tension_ship.add(tensions_.col(0).norm());
   report.tension_vehicle.add(tensions_.col(tensions_.cols() - 1).norm());
   countSnaps(report);
+  checkBreak(report);
+  if (y_.size() != size)  // re-meshed or parted: odeint sizes its buffers once
+    steppers_ = std::make_unique<Steppers>(model_->numerics());
 }
 
 ElementKinematics Simulator::elementKinematics(int e) const
@@ -534,7 +560,7 @@ ElementKinematics Simulator::elementKinematics(int e) const
                             std::to_string(L.joints - 1));
   const auto x = L.positions(y_);
   const auto v = L.velocities(y_);
-  const ShipEndState ship = ship_(t_);
+  const ShipEndState ship = towPoint(t_, y_);
   const Eigen::Vector3d x_f = e == 0 ? ship.p_W : Eigen::Vector3d(x.col(e - 1));
   const Eigen::Vector3d v_f = e == 0 ? ship.v_W : Eigen::Vector3d(v.col(e - 1));
   return ElementKinematics::fromJoints(x_f, x.col(e), v_f, v.col(e));
@@ -553,7 +579,7 @@ Eigen::Matrix3Xd Simulator::jointPositions() const
 {
   const StateLayout L = layout();
   Eigen::Matrix3Xd p(3, L.joints + 1);
-  p.col(0) = ship_(t_).p_W;
+  p.col(0) = towPoint(t_, y_).p_W;
   p.rightCols(L.joints) = L.positions(y_);
   return p;
 }

@@ -12,14 +12,22 @@ namespace tow_sim
 double Simulator::nextStep() const
 {
   const NumericsParams& num = model_->numerics();
-  if (num.stepper == StepperType::kRk4 || num.stepper == StepperType::kImplicitFixed)
+  if (stepper() == StepperType::kRk4 || stepper() == StepperType::kImplicitFixed)
     return num.fixed_step;
   return std::min(dt_, num.max_step);
 }
 
+StepperType Simulator::stepper() const
+{
+  // A parted cable's free end is not in the implicit stepper's linearisation (it takes the tow point's
+  // motion as given): dopri5 from then on.
+  const StepperType configured = model_->numerics().stepper;
+  return free_ && isImplicit(configured) ? StepperType::kDopri5 : configured;
+}
+
 bool Simulator::implicit() const
 {
-  return isImplicit(model_->numerics().stepper);
+  return isImplicit(stepper());
 }
 
 void Simulator::linearise()

@@ -26,6 +26,8 @@ void requireFinite(const std::string& field, const FinServo::State& servo)
 
 SimulatorState Simulator::saveState() const
 {
+  if (free_)
+    throw std::logic_error("saved state: a parted cable's state cannot be saved (not supported yet)");
   SimulatorState s;
   s.t = t_;
   s.dt = dt_;
@@ -64,12 +66,15 @@ void Simulator::restoreState(const SimulatorState& s)
   if (!s.slack.empty() && s.slack.size() != static_cast<std::size_t>(s.segments))
     throw std::invalid_argument("saved state: slack has " + std::to_string(s.slack.size()) + " flags for " +
                                 std::to_string(s.segments) + " segments");
+  const bool was_parted = free_;
+  free_ = false;  // a saved state is of a whole cable
   try
   {
     restoreLayout(s.segments, L.cableOut(s.y));
   }
   catch (const std::invalid_argument&)
   {
+    free_ = was_parted;
     std::ostringstream os;
     os << "saved state: " << s.segments << " segments and " << L.cableOut(s.y)
        << " m of cable out do not fit this cable (cable.segments " << model_->segments() << ", cable.length "

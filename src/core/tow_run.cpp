@@ -162,6 +162,8 @@ std::string TowRun::start(double t)
   while (next_command_ < commands_.size() && commands_[next_command_].t <= t)
     ++next_command_;
   const CommandEvent* due = next_command_ > 0 ? &commands_[next_command_ - 1] : nullptr;
+  sim_.rejoin();  // a parted cable is whole again: a restart lays the configured cable out
+  parting_.reset();
   sim_.resetActuators(t);
   if (due && !autopilot_)  // the thrust shapes the equilibrium
     sim_.commandAt(t, due->rudder, due->elevator, due->thrust);
@@ -213,7 +215,7 @@ void TowRun::autopilotTick(double t)
   autopilot_->addShip(Eigen::Vector2d(pose.x, pose.y));
   const AutopilotCommand c = autopilot_->update(t);
   sim_.command(c.rudder, c.elevator, c.thrust);
-  if (c.winch)
+  if (c.winch && !sim_.parted())
     sim_.setWinchCommand(c.payout_rate);
 }
 
@@ -238,6 +240,8 @@ StepReport TowRun::advanceTo(double t)
     total.snaps += r.snaps;
     total.max_strain = std::max(total.max_strain, r.max_strain);
     snap_count_ += r.snaps;
+    if (r.parting)
+      total.parting = parting_ = r.parting;
     max_strain_ = std::max(max_strain_, r.max_strain);
     tension_ship_range_.add(r.tension_ship);
     tension_vehicle_range_.add(r.tension_vehicle);
@@ -259,7 +263,7 @@ StepReport TowRun::advanceTo(double t)
         sim_.command(c.rudder, c.elevator, c.thrust);
       const bool autopilot_winch =
           autopilot_ && autopilot_loop_.params.actuator != DepthAutopilotParams::Actuator::kElevator;
-      if (config_.winch.enabled && !autopilot_winch)  // else the autopilot drives the winch
+      if (config_.winch.enabled && !autopilot_winch && !sim_.parted())  // else the autopilot drives the winch
         sim_.setWinchCommand(c.payout_rate);
     }
     else if (t_next == t_setpoint)
@@ -363,6 +367,7 @@ TowSnapshot TowRun::snapshot()
   }
   if (autopilot_ && autopilot_->hasSetpoint())
     s.depth_setpoint = autopilot_->setpoint();
+  s.parting = parting_;
   return s;
 }
 
@@ -471,6 +476,7 @@ void TowRun::restore(const RunState& s)
     const long first = firstTickFrom(t);
     ticks_ = s.autopilot && (s.ticks == first || s.ticks == first + 1) ? s.ticks : first;
   }
+  parting_.reset();  // states of parted cables are not saved
   snap_count_ = s.snap_count;
   max_strain_ = s.max_strain;
   max_length_error_ = s.max_length_error;

@@ -102,6 +102,7 @@ TowSimNode::TowSimNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   ship_force_pub_ = nh_.advertise<geometry_msgs::WrenchStamped>("ship/tow_force", 10);
   vehicle_force_pub_ = nh_.advertise<geometry_msgs::WrenchStamped>("vehicle/tow_force", 10);
   joint_state_pub_ = nh_.advertise<sensor_msgs::JointState>("joint_states", 10);
+  parting_pub_ = nh_.advertise<tow_sim::CableParting>("cable/parting", 1, true);
   reset_srv_ = pnh_.advertiseService("reset", &TowSimNode::onReset, this);
   pause_srv_ = pnh_.advertiseService("set_paused", &TowSimNode::onSetPaused, this);
   plan_srv_ = pnh_.advertiseService("plan_cable_out", &TowSimNode::onPlanCableOut, this);
@@ -492,6 +493,7 @@ void TowSimNode::publishTick(const ros::TimerEvent&)
   have_last_ = true;
   max_length_error_ = std::max(max_length_error_, snapshot.max_length_error);
   noteTensionLimits(snapshot);
+  noteParting(snapshot);
   std_msgs::Header header;
   header.stamp = absolute(snapshot.t);
   header.frame_id = params_.world_frame;
@@ -560,6 +562,7 @@ void TowSimNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
   status.add("max relative length error", max_length_error_);
   max_length_error_ = 0.0;
   diagnoseTensionLimits(status);
+  diagnoseParting(status);
 }
 
 void TowSimNode::noteTensionLimits(const TowSnapshot& snapshot)

@@ -1,5 +1,5 @@
-// tow_sim_node's saved states: ~save_state writes the run's state (saved_state.h), ~load_state carries a
-// saved one to the ship's pose now and goes on from it.
+// tow_sim_node's saved states (~save_state writes the run's state, saved_state.h; ~load_state carries a
+// saved one to the ship's pose now and goes on from it) and the cable parting's report.
 #include <cstdio>
 #include <exception>
 #include <string>
@@ -77,6 +77,38 @@ bool TowSimNode::onLoadState(tow_sim::StateFile::Request& req, tow_sim::StateFil
   if (!res.success)
     ROS_WARN("tow_sim: ~load_state refused: %s", res.message.c_str());
   return true;
+}
+
+void TowSimNode::noteParting(const TowSnapshot& snapshot)
+{
+  if (!snapshot.parting)
+  {
+    parting_.reset();  // a restart joined the cable again
+    return;
+  }
+  if (parting_ && parting_->t == snapshot.parting->t)
+    return;
+  parting_ = snapshot.parting;
+  tow_sim::CableParting msg;
+  msg.header.stamp = absolute(parting_->t);
+  msg.header.frame_id = params_.world_frame;
+  msg.joint = static_cast<uint32_t>(parting_->joint);
+  msg.tension = parting_->tension;
+  msg.breaking_load = config_.cable.breaking_load.value_or(0.0);
+  parting_pub_.publish(msg);
+  ROS_ERROR(
+      "tow_sim: the cable PARTED at joint %d (1: the tow point) under %.0f N, above the breaking load %.0f N "
+      "(t = %.3f s); the vehicle side goes on with a free end, ~reset joins the cable again",
+      parting_->joint, parting_->tension, msg.breaking_load, msg.header.stamp.toSec());
+}
+
+void TowSimNode::diagnoseParting(diagnostic_updater::DiagnosticStatusWrapper& status)
+{
+  using diagnostic_msgs::DiagnosticStatus;
+  if (parting_)
+    status.mergeSummaryf(DiagnosticStatus::ERROR, "the cable parted at joint %d under %.0f N", parting_->joint,
+                         parting_->tension);
+  status.add("parted", parting_ ? "yes" : "no");
 }
 
 }  // namespace tow_sim

@@ -45,6 +45,20 @@ std::string timeseriesRow(const TowSnapshot& s)
   return row.str();
 }
 
+const char* eventsHeader()
+{
+  return "t,event,joint,tension";
+}
+
+std::string eventsRows(const BatchResult& result)
+{
+  std::ostringstream rows;
+  rows.precision(10);
+  if (result.parting)
+    rows << result.parting->t << ",parting," << result.parting->joint << ',' << result.parting->tension << '\n';
+  return rows.str();
+}
+
 std::string shapesRows(const TowSnapshot& s)
 {
   std::ostringstream rows;
@@ -130,9 +144,10 @@ void runScenario(const Scenario& sc, std::ostream& series, std::ostream& shapes,
     run.advanceTo(t);
     for (; next_save < sc.save_state_at.size() && sc.save_state_at[next_save] <= t + 1e-9 * std::max(1.0, t);
          ++next_save)
-      if (save_state && sc.save_state_at[next_save] >= t - 1e-9 * std::max(1.0, t))
+      if (save_state && !run.simulator().parted() && sc.save_state_at[next_save] >= t - 1e-9 * std::max(1.0, t))
         save_state(t, run.saveState());
     const TowSnapshot s = run.snapshot();
+    result.parting = s.parting;
     series << timeseriesRow(s) << '\n';
     if (i % shapes_every == 0 || i == outputs)
       shapes << shapesRows(s);

@@ -9,6 +9,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "tow_sim/core/chain_model.h"
@@ -55,8 +56,9 @@ std::vector<double> segmentStrains(const ChainGeometry& geometry, const Eigen::M
 // out [m] and the payout rate [m/s], in that order. Named views instead of index arithmetic.
 struct StateLayout
 {
-  int joints = 0;  // nu + 1
-  std::size_t size() const { return 6 * static_cast<std::size_t>(joints) + 2; }
+  int joints = 0;     // nu + 1
+  bool free = false;  // a parted cable: the free first joint's position and velocity follow (6 more)
+  std::size_t size() const { return 6 * static_cast<std::size_t>(joints) + 2 + (free ? 6 : 0); }
   Eigen::Map<Eigen::Matrix3Xd> positions(std::vector<double>& y) const { return { y.data(), 3, joints }; }
   Eigen::Map<const Eigen::Matrix3Xd> positions(const std::vector<double>& y) const { return { y.data(), 3, joints }; }
   Eigen::Map<Eigen::Matrix3Xd> velocities(std::vector<double>& y) const { return { y.data() + 3 * joints, 3, joints }; }
@@ -68,6 +70,30 @@ struct StateLayout
   double cableOut(const std::vector<double>& y) const { return y[6 * static_cast<std::size_t>(joints)]; }
   double& payoutRate(std::vector<double>& y) const { return y[6 * static_cast<std::size_t>(joints) + 1]; }
   double payoutRate(const std::vector<double>& y) const { return y[6 * static_cast<std::size_t>(joints) + 1]; }
+  Eigen::Map<Eigen::Vector3d> freePosition(std::vector<double>& y) const
+  {
+    return Eigen::Map<Eigen::Vector3d>(y.data() + 6 * joints + 2);
+  }
+  Eigen::Map<const Eigen::Vector3d> freePosition(const std::vector<double>& y) const
+  {
+    return Eigen::Map<const Eigen::Vector3d>(y.data() + 6 * joints + 2);
+  }
+  Eigen::Map<Eigen::Vector3d> freeVelocity(std::vector<double>& y) const
+  {
+    return Eigen::Map<Eigen::Vector3d>(y.data() + 6 * joints + 5);
+  }
+  Eigen::Map<const Eigen::Vector3d> freeVelocity(const std::vector<double>& y) const
+  {
+    return Eigen::Map<const Eigen::Vector3d>(y.data() + 6 * joints + 5);
+  }
+};
+
+// The cable parting (cable.break_at_breaking_load): when, where and at what tension.
+struct PartingEvent
+{
+  double t = 0.0;        // [s]
+  int joint = 0;         // 1 = the tow point .. nu + 1 = the bail: the forward joint of element joint - 1
+  double tension = 0.0;  // [N] |T| there, above breaking_load
 };
 
 // Lateral diversion (the report's): horizontal offset of a point from the line through the ship along
@@ -114,6 +140,7 @@ struct StepReport
                                   // rest length) to taut (T > 0)
   // [-] elastic cable: the largest segment strain at the end of a step (-inf: none)
   double max_strain = -std::numeric_limits<double>::infinity();
+  std::optional<PartingEvent> parting;  // the cable parted during these steps (advanceTo goes on after it)
 };
 
 // What the simulator holds between steps (a saved state): enough to go on bit-identically. The model, the
@@ -163,6 +190,17 @@ public:
   SimulatorState saveState() const;
   void restoreState(const SimulatorState& state);
 
+  // The cable parted (cable.break_at_breaking_load, or part()): the chain is the vehicle side, from a free
+  // first joint; the winch is stopped, and the steppers are explicit (dopri5; rk4 if configured).
+  bool parted() const { return free_; }
+  // Parts the cable now at element e's forward joint (0: the tow point .. nu: the bail): the elements
+  // forward of it leave the simulation, the joint's position and velocity become the free end's. Throws
+  // std::logic_error if already parted, std::out_of_range for another e.
+  void part(int element);
+  // The whole cable again, laid out as configured (the winch's cable out as configured too): a reset() must
+  // follow. Nothing happens to a cable that has not parted.
+  void rejoin();
+
   // The right-hand side dy/dt at (t, y) for the current data: no side effect (only the solver's
   // workspace changes), so equal arguments give bit-identical results whatever was evaluated before.
   void derivative(double t, const StateVector& y, StateVector& dydt) const;
@@ -192,8 +230,9 @@ public:
   // steppers' proposal (at most max_step).
   double nextStep() const;
   ChainState state() const;
-  const StateVector& stateVector() const { return y_; }  // the integrator's state, StateLayout
-  ShipEndState shipEnd() const { return ship_(t_); }
+  const StateVector& stateVector() const { return y_; }         // the integrator's state, StateLayout
+  ShipEndState shipEnd() const { return ship_(t_); }            // the ship's tow point, parted or not
+  ShipEndState firstJoint() const { return towPoint(t_, y_); }  // x_1: the tow point, or the free end once parted
   // The element lengths now (the winch changes the layout): geometry().segments is nu now.
   const ChainGeometry& geometry() const { return data_.geometry; }
   // Joints x_1 .. x_{nu+2} (3 x (nu+2)) with the tow point first.
@@ -213,7 +252,12 @@ public:
   const ChainModel& model() const { return *model_; }
 
 private:
-  StateLayout layout() const { return StateLayout{ data_.geometry.jointCount() }; }
+  StateLayout layout() const { return StateLayout{ data_.geometry.jointCount(), free_ }; }
+  // The chain's first joint at (t, y): the ship's tow point, or the free end of a parted cable (its
+  // acceleration unknown: 0 here).
+  ShipEndState towPoint(double t, const StateVector& y) const;
+  StepperType stepper() const;          // the configured one, explicit once parted
+  void checkBreak(StepReport& report);  // parts the cable where a tension exceeds breaking_load
   // The element lengths for the state y at time t: the first segment from the cable out, its rates from
   // the winch law (the model's as configured while the winch is off).
   ChainGeometry geometryOf(const StateVector& y) const;
@@ -224,6 +268,7 @@ private:
   void project(double t);
   void refreshOutputs();
   void stepOnce(double t_end, double winch_step, StepReport& report);  // one accepted or rejected step
+  void acceptStep(StepReport& report);  // after an accepted step: re-mesh, project, outputs, snaps, parting
   // The implicit stepper's step: false when rejected (dt_ then holds the step to try next).
   bool stepImplicit(double t_end, double winch_step, StepReport& report);
   void implicitStages(double h);  // y_next_ and error_ of the step h (factored)
@@ -248,6 +293,7 @@ private:
   Eigen::Matrix3Xd tensions_, accelerations_;
   std::vector<double> multipliers_;  // each element's axial multiplier at the current state [N]
   std::vector<char> slack_;          // elastic cable: each segment slack (for counting snaps)
+  bool free_ = false;                // parted: the first joint is free (its state after the payout rate)
   void countSnaps(StepReport& report);
   ImplicitStepper implicit_;
   const RosenbrockTableau* tableau_ = nullptr;  // the implicit steppers' method

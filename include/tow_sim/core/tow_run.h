@@ -80,6 +80,9 @@ struct TowSnapshot
   int contacts = 0;                      // joints below the bottom
   bool vehicle_on_seabed = false;        // a hull end below the bottom
   std::optional<double> depth_setpoint;  // [m] the autopilot's (the equivalent depth in altitude mode)
+  // The cable parted (cable.break_at_breaking_load) since the run started: joints then begin at the free
+  // end of the vehicle side (tow_point stays the ship's, tension_ship is 0) and segments are that side's.
+  std::optional<PartingEvent> parting;
 };
 
 // The outputs at time t between two snapshots a, b of one run (a.t <= t <= b.t, else the nearer end):
@@ -202,7 +205,8 @@ private:
   double max_strain_ = 0.0;                                // since the last snapshot (-inf: none yet)
   ValueRange tension_ship_range_, tension_vehicle_range_;  // since the last snapshot
   AttitudeHold attitude_;
-  double reached_ = 0.0;  // [s] the time of the last start() or advanceTo()
+  double reached_ = 0.0;                 // [s] the time of the last start() or advanceTo()
+  std::optional<PartingEvent> parting_;  // since start()
 };
 
 }  // namespace tow_sim

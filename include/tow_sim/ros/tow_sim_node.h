@@ -21,6 +21,7 @@
 
 #include <std_msgs/Float64.h>
 
+#include "tow_sim/CableParting.h"
 #include "tow_sim/CurrentProfile.h"
 #include "tow_sim/FinCommand.h"
 #include "tow_sim/PlanCableOut.h"
@@ -73,6 +74,10 @@ private:
   // since the previous report merged into the diagnostics' summary (WARN, ERROR) with its values.
   void noteTensionLimits(const TowSnapshot& snapshot);
   void diagnoseTensionLimits(diagnostic_updater::DiagnosticStatusWrapper& status);
+  // The cable parted (tow_sim_node_state.cpp): said once (ROS_ERROR, the latched cable/parting), and an
+  // ERROR in the diagnostics while the run goes on parted.
+  void noteParting(const TowSnapshot& snapshot);
+  void diagnoseParting(diagnostic_updater::DiagnosticStatusWrapper& status);
   void printStatus();  // the status line (print_status)
 
   void start(double t);  // the initial shape at the ship's pose at time t (relative)
@@ -139,6 +144,8 @@ private:
   ros::Publisher state_pub_, marker_pub_, vehicle_odom_pub_, fin_loads_pub_;
   ros::Publisher ship_force_pub_, vehicle_force_pub_;  // the cable's forces on the ship and the vehicle
   ros::Publisher joint_state_pub_;                     // the fin angles, for robot_state_publisher (URDF)
+  ros::Publisher parting_pub_;                         // cable/parting, latched
+  std::optional<PartingEvent> parting_;                // the run's, once said
   ros::ServiceServer reset_srv_, pause_srv_, plan_srv_, save_srv_, load_srv_;
   std::optional<double> winch_target_;  // [m] a planned cable out the winch is going to (cleared on arrival
                                         // or by a winch/command)

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <ostream>
 #include <stdexcept>
 #include <string>
@@ -23,10 +24,15 @@ std::string shapesRows(const TowSnapshot& s);
 
 struct BatchResult
 {
-  double t_reached = 0.0;     // [s] the last output time written
-  long rows = 0;              // timeseries rows written
-  std::string start_warning;  // the initial shape's fallback, if it had to fall back
+  double t_reached = 0.0;               // [s] the last output time written
+  long rows = 0;                        // timeseries rows written
+  std::string start_warning;            // the initial shape's fallback, if it had to fall back
+  std::optional<PartingEvent> parting;  // the cable parted (cable.break_at_breaking_load)
 };
+
+// events.csv: a header and a row per event (t, event, joint, tension): the cable parting, if it did.
+const char* eventsHeader();
+std::string eventsRows(const BatchResult& result);
 
 // Runs the scenario, writing the headers and a row per output interval (shapes every shape interval and at
 // the end). Throws std::runtime_error when the run diverges; `result` then says how far the rows go.
@@ -34,7 +40,7 @@ struct BatchResult
 // (initial_state type file) starts at the state's time, its first row the first output time from then on;
 // continuing a state saved at an output time of the same scenario gives the very rows the uninterrupted run
 // wrote from that time on. `save_state` (may be empty) gets the run's state at each of save_state_at, taken
-// before that time's row.
+// before that time's row (none once the cable has parted: such states are not saved).
 // A state saved with the ship elsewhere (another scenario's, the node's) is placed behind this scenario's ship
 // at its time (relocate(), said in start_warning). A state that cannot be read or does not fit the run throws
 // BadInitialState.
