@@ -385,7 +385,7 @@ void Simulator::project(double t)
   // Sequentially from the ship: restore each element's length along its current direction, then
   // remove the relative velocity along the element (s.(v_a - v_f) = 0).
   const StateLayout L = layout();
-  if (winch_.enabled)
+  if (winch_.enabled && !free_)  // parted: the vehicle side's length is no winch's
   {
     // The winch stops at its limits (its rate law brakes toward them; this removes the last overshoot).
     double& length = L.cableOut(y_);

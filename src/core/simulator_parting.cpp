@@ -29,7 +29,9 @@ void Simulator::part(int element)
                             std::to_string(L.joints - 1));
   // The parted joint: the tow point, or the aft joint of the element forward of it.
   ShipEndState end = ship_(t_);
-  if (element > 0)
+  if (element == 0)  // the cable there moves with the payout: the first element keeps its length from now on
+    end.v_W += data_.geometry.first_rate * (L.positions(y_).col(0) - end.p_W).normalized();
+  else
   {
     end.p_W = L.positions(y_).col(element - 1);
     end.v_W = L.velocities(y_).col(element - 1);
@@ -58,6 +60,7 @@ void Simulator::part(int element)
 
 void Simulator::rejoin()
 {
+  parting_event_.reset();
   if (!free_)
     return;
   free_ = false;
@@ -81,7 +84,7 @@ void Simulator::checkBreak(StepReport& report)
   parting.t = t_;
   parting.joint = static_cast<int>(worst) + 1;
   parting.tension = largest;
-  report.parting = parting;
+  report.parting = parting_event_ = parting;
   part(static_cast<int>(worst));
 }
 

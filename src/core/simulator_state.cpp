@@ -81,6 +81,7 @@ void Simulator::restoreState(const SimulatorState& s)
        << model_->cableLength() << " m, winch " << (winch_.enabled ? "on" : "off") << ")";
     throw std::invalid_argument(os.str());
   }
+  parting_event_.reset();
   t_ = s.t;
   dt_ = s.dt;
   y_ = s.y;

@@ -163,7 +163,6 @@ std::string TowRun::start(double t)
     ++next_command_;
   const CommandEvent* due = next_command_ > 0 ? &commands_[next_command_ - 1] : nullptr;
   sim_.rejoin();  // a parted cable is whole again: a restart lays the configured cable out
-  parting_.reset();
   sim_.resetActuators(t);
   if (due && !autopilot_)  // the thrust shapes the equilibrium
     sim_.commandAt(t, due->rudder, due->elevator, due->thrust);
@@ -241,7 +240,7 @@ StepReport TowRun::advanceTo(double t)
     total.max_strain = std::max(total.max_strain, r.max_strain);
     snap_count_ += r.snaps;
     if (r.parting)
-      total.parting = parting_ = r.parting;
+      total.parting = r.parting;
     max_strain_ = std::max(max_strain_, r.max_strain);
     tension_ship_range_.add(r.tension_ship);
     tension_vehicle_range_.add(r.tension_vehicle);
@@ -367,7 +366,7 @@ TowSnapshot TowRun::snapshot()
   }
   if (autopilot_ && autopilot_->hasSetpoint())
     s.depth_setpoint = autopilot_->setpoint();
-  s.parting = parting_;
+  s.parting = sim_.partingEvent();
   return s;
 }
 
@@ -476,7 +475,6 @@ void TowRun::restore(const RunState& s)
     const long first = firstTickFrom(t);
     ticks_ = s.autopilot && (s.ticks == first || s.ticks == first + 1) ? s.ticks : first;
   }
-  parting_.reset();  // states of parted cables are not saved
   snap_count_ = s.snap_count;
   max_strain_ = s.max_strain;
   max_length_error_ = s.max_length_error;

@@ -104,7 +104,7 @@ void addForceAndLabels(const TowSnapshot& s, const NodeParams& params, const std
 {
   using visualization_msgs::Marker;
   Marker arrow = baseMarker(header, "tow_force", 0, Marker::ARROW);
-  const Eigen::Vector3d tow_point = s.joints.col(0);
+  const Eigen::Vector3d tow_point = s.tow_point.p_W;  // the ship's, also after a parting
   arrow.points.push_back(ros_conv::toPoint(tow_point));
   arrow.points.push_back(ros_conv::toPoint(tow_point - params.force_arrow_scale * s.tensions.col(0)));
   arrow.scale.x = 0.4;
@@ -174,7 +174,7 @@ void addShip(const TowSnapshot& s, const NodeParams& params, const std_msgs::Hea
         ros_conv::toPoint(Eigen::Vector3d(s.ship.x + c * xy[0] - sn * xy[1], s.ship.y + sn * xy[0] + c * xy[1], 0.0)));
   array.markers.push_back(hull);
   Marker tow_point = baseMarker(header, "ship", 1, Marker::SPHERE);
-  tow_point.pose.position = ros_conv::toPoint(s.joints.col(0));
+  tow_point.pose.position = ros_conv::toPoint(s.tow_point.p_W);
   tow_point.scale.x = tow_point.scale.y = tow_point.scale.z = 2.0;
   tow_point.color.r = 1.0;
   tow_point.color.g = 0.8;

@@ -108,6 +108,8 @@ bool TowSimNode::onPlanCableOut(tow_sim::PlanCableOut::Request& req, tow_sim::Pl
   what << plan.cable_out << " m out puts the vehicle at " << res.depth << " m at " << speed << " m/s";
   if (req.execute && !started_)
     what << "; not executed: no ship odometry yet";
+  else if (req.execute && run_.simulator().parted())
+    what << "; not executed: the cable has parted (~reset joins it again)";
   else if (req.execute)
   {
     winch_target_ = plan.cable_out;
@@ -123,6 +125,12 @@ void TowSimNode::driveWinch()
 {
   if (!winch_target_ || !config_.winch.enabled)
     return;
+  if (run_.simulator().parted())  // the winch stopped with the parting: nothing to drive
+  {
+    winch_target_.reset();
+    ROS_WARN("tow_sim: the planned cable out is given up: the cable has parted");
+    return;
+  }
   const double remaining = *winch_target_ - run_.simulator().cableLength();
   if (std::abs(remaining) <= kArrived)
   {

@@ -96,6 +96,20 @@ long restoreInitialState(const Scenario& sc, const ShipHistory& ship, TowRun& ru
   run.restore(state);
   return static_cast<long>(std::ceil(t / sc.output_interval - 1e-9));
 }
+
+// TowRun::advanceTo, and on its failure the parting it may have gone through first (still an event).
+void advanceKeepingEvents(TowRun& run, double t, BatchResult& result)
+{
+  try
+  {
+    run.advanceTo(t);
+  }
+  catch (...)
+  {
+    result.parting = run.simulator().partingEvent();
+    throw;
+  }
+}
 }  // namespace
 
 void runScenario(const Scenario& sc, std::ostream& series, std::ostream& shapes, BatchResult& result,
@@ -141,7 +155,7 @@ void runScenario(const Scenario& sc, std::ostream& series, std::ostream& shapes,
   for (long i = first; i <= outputs; ++i)
   {
     const double t = std::min(sc.duration, i * sc.output_interval);
-    run.advanceTo(t);
+    advanceKeepingEvents(run, t, result);
     for (; next_save < sc.save_state_at.size() && sc.save_state_at[next_save] <= t + 1e-9 * std::max(1.0, t);
          ++next_save)
       if (save_state && !run.simulator().parted() && sc.save_state_at[next_save] >= t - 1e-9 * std::max(1.0, t))

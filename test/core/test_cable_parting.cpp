@@ -135,6 +135,52 @@ TEST(CableParting, AnElasticCablePartsAndItsCentreOfMassFallsAtG)
   EXPECT_NEAR(com[2].x() - com[1].x(), 2.0 * 0.5, 1e-6);  // the ship's 2 m/s kept
 }
 
+TEST(CableParting, PartedDuringAPayoutTheChainFallsAsOneBody)
+{
+  // A hanging chain paid out at 1 m/s in vacuum grows heavier until it parts at the tow point, where the
+  // cable was running out at the payout rate: every joint, the free end too, moves with the same velocity
+  // then, and the parted chain falls as one rigid body (each joint the same displacement, no tension).
+  SimulationConfig c;
+  c.environment.water_density = 0.0;
+  c.cable.length = 100.0;
+  c.cable.segments = 10;
+  c.winch.enabled = true;
+  c.cable.breaking_load = (c.cable.mass_per_length * 104.0 + c.vehicle.mass) * c.environment.gravity;
+  c.cable.break_at_breaking_load = true;
+  c.numerics.stepper = StepperType::kDopri5;
+  c.numerics.abs_tol = c.numerics.rel_tol = 1e-10;
+  InitialShape hanging;
+  hanging.type = InitialShape::Type::kHanging;
+  TowRun run(c, steaming(2.0), hanging);
+  run.start(0.0);
+  run.setWinchCommand(1.0);
+  run.advanceTo(5.0);
+  ASSERT_FALSE(run.snapshot().parting);
+  const double rate = run.snapshot().payout_rate;  // still rising toward 1 m/s: the rate at the parting is in [rate, 1]
+  run.advanceTo(10.0);
+  const TowSnapshot first = run.snapshot();
+  run.advanceTo(11.0);
+  const TowSnapshot second = run.snapshot();
+  ASSERT_TRUE(second.parting);
+  EXPECT_EQ(second.parting->joint, 1);
+  EXPECT_GT(second.parting->t, 2.0);  // paid out first
+  EXPECT_LT(second.parting->t, 10.0);
+  EXPECT_NEAR(second.cable_length, first.cable_length, 1e-12);  // the winch stopped with the parting
+  EXPECT_GT(second.cable_length, 103.0);
+  const Eigen::Vector3d moved = second.joints.col(0) - first.joints.col(0);
+  std::printf("parted at t = %.3f s with %.3f m out; the free end moved (%.4f, %.4f, %.4f) m in 1 s\n",
+              second.parting->t, second.cable_length, moved.x(), moved.y(), moved.z());
+  for (Eigen::Index j = 1; j < second.joints.cols(); ++j)
+    EXPECT_LT((second.joints.col(j) - first.joints.col(j) - moved).norm(), 1e-6) << "joint " << j;
+  EXPECT_LT(second.tensions.colwise().norm().maxCoeff(), 1e-6 * c.cable.breaking_load.value());
+  EXPECT_NEAR(moved.x(), 2.0, 1e-9);
+  // Falling since the parting from the payout's downward rate r: moved.z = -r - g (10 s - t_p) - g / 2.
+  const double g = c.environment.gravity, fallen = g * (10.0 - second.parting->t) + 0.5 * g;
+  EXPECT_GT(rate, 0.9);
+  EXPECT_LT(moved.z(), -rate - fallen + 1e-6);
+  EXPECT_GT(moved.z(), -1.0 - fallen - 1e-6);
+}
+
 SimulationConfig simpleBodyOnABuoyantCable()
 {
   SimulationConfig c;

@@ -371,6 +371,18 @@ TEST(TowSimNode, ElevatorRaisesTheVehicleRudderMovesItToPort)
 TEST(TowSimNode, TheImplicitStepperPublishesAtTheClockFromItsOwnSteps)
 {
   world->advance(20.0);
+  // advance() waits for a new state from each node, not for the last tick's: on a loaded machine one node
+  // may still be working through the clock's queue. Wait (wall time) until both are at the same tick.
+  const ros::WallTime give_up = ros::WallTime::now() + ros::WallDuration(5.0);
+  while (ros::WallTime::now() < give_up)
+  {
+    {
+      std::lock_guard<std::mutex> lock(world->rec_.mutex);
+      if (world->rec_.state["dopri5"].header.stamp == world->rec_.state["base"].header.stamp)
+        break;
+    }
+    ros::WallDuration(0.01).sleep();
+  }
   std::lock_guard<std::mutex> lock(world->rec_.mutex);
   const auto& dopri5 = world->rec_.state["dopri5"];
   const auto& implicit = world->rec_.state["base"];

@@ -193,6 +193,9 @@ public:
   // The cable parted (cable.break_at_breaking_load, or part()): the chain is the vehicle side, from a free
   // first joint; the winch is stopped, and the steppers are explicit (dopri5; rk4 if configured).
   bool parted() const { return free_; }
+  // Where and when it parted at its breaking load (checkBreak; kept until rejoin() or restoreState(), so an
+  // advance that throws after it does not lose it). Empty after a part() by hand.
+  const std::optional<PartingEvent>& partingEvent() const { return parting_event_; }
   // Parts the cable now at element e's forward joint (0: the tow point .. nu: the bail): the elements
   // forward of it leave the simulation, the joint's position and velocity become the free end's. Throws
   // std::logic_error if already parted, std::out_of_range for another e.
@@ -293,7 +296,8 @@ private:
   Eigen::Matrix3Xd tensions_, accelerations_;
   std::vector<double> multipliers_;  // each element's axial multiplier at the current state [N]
   std::vector<char> slack_;          // elastic cable: each segment slack (for counting snaps)
-  bool free_ = false;                // parted: the first joint is free (its state after the payout rate)
+  std::optional<PartingEvent> parting_event_;
+  bool free_ = false;  // parted: the first joint is free (its state after the payout rate)
   void countSnaps(StepReport& report);
   ImplicitStepper implicit_;
   const RosenbrockTableau* tableau_ = nullptr;  // the implicit steppers' method

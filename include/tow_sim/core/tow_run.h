@@ -205,8 +205,7 @@ private:
   double max_strain_ = 0.0;                                // since the last snapshot (-inf: none yet)
   ValueRange tension_ship_range_, tension_vehicle_range_;  // since the last snapshot
   AttitudeHold attitude_;
-  double reached_ = 0.0;                 // [s] the time of the last start() or advanceTo()
-  std::optional<PartingEvent> parting_;  // since start()
+  double reached_ = 0.0;  // [s] the time of the last start() or advanceTo()
 };
 
 }  // namespace tow_sim
