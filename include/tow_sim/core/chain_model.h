@@ -37,13 +37,15 @@ struct ChainGeometry
   double first_rate = 0.0;          // [m/s] its rate of change
   double first_acceleration = 0.0;  // [m/s^2]
   double end_length = 0.0;          // [m] d_{nu+1}
+  // false: no end body, the last segment's aft joint is free (a parted cable's ship side, docs/solver.md §10)
+  bool end_body = true;
 
-  int elementCount() const { return segments + 1; }  // nu + 1
-  int jointCount() const { return segments + 1; }    // unknown joints x_2 .. x_{nu+2}
+  int elementCount() const { return segments + (end_body ? 1 : 0); }  // nu + 1 (nu without the end body)
+  int jointCount() const { return elementCount(); }                   // unknown joints x_2 .. x_{nu+2}
   // (A free end body alone, a parted cable's vehicle side, has no segment: segments = 0.)
   double elementLength(int e) const { return e < segments ? (e == 0 ? first_length : nominal_length) : end_length; }
   double cableLength() const { return first_length + (segments - 1) * nominal_length; }  // [m] cable out
-  double totalLength() const { return cableLength() + end_length; }
+  double totalLength() const { return cableLength() + (end_body ? end_length : 0.0); }
 };
 
 // Everything about the chain that changes while it runs, apart from the integrator's state (joint positions
