@@ -341,7 +341,7 @@ void Simulator::reset(double t, const ChainState& state)
 void Simulator::derivative(double t, const StateVector& y, StateVector& dydt) const
 {
   const ChainGeometry geometry = geometryOf(y);
-  const StateLayout L{ geometry.jointCount(), free_ };
+  const StateLayout L{ geometry.jointCount(), free_, free_ ? ship_side_.segments : 0 };
   L.positions(dydt) = L.velocities(y);
   Eigen::Map<Eigen::Matrix3Xd> a = L.velocities(dydt);
   if (free_)
@@ -349,6 +349,7 @@ void Simulator::derivative(double t, const StateVector& y, StateVector& dydt) co
     L.freePosition(dydt) = L.freeVelocity(y);
     L.freeVelocity(dydt) =
         solver_.solveFree(*model_, geometry, data_, t, towPoint(t, y), L.positions(y), L.velocities(y), a);
+    shipSideDerivative(t, y, dydt);
   }
   else
     solver_.solve(*model_, geometry, data_, t, ship_(t), L.positions(y), L.velocities(y), a);
@@ -368,6 +369,7 @@ void Simulator::refreshOutputs()
     L.freePosition(dydt_) = L.freeVelocity(y_);
     L.freeVelocity(dydt_) = solver_.solveFree(*model_, data_.geometry, data_, t_, towPoint(t_, y_), L.positions(y_),
                                               L.velocities(y_), accelerations_, &tensions_, &multipliers_);
+    shipSideOutputs();
   }
   else
     solver_.solve(*model_, data_.geometry, data_, t_, ship_(t_), L.positions(y_), L.velocities(y_), accelerations_,
@@ -421,12 +423,15 @@ void Simulator::project(double t)
     x_f = x.col(e);
     v_f = v.col(e);
   }
+  if (free_)
+    projectShipSide(t);
 }
 
 double Simulator::lengthError() const
 {
   const int first = model_->cable().elastic() ? data_.geometry.segments : 0;
-  return maxRelativeLengthError(data_.geometry, towPoint(t_, y_).p_W, layout().positions(y_), first);
+  return std::max(maxRelativeLengthError(data_.geometry, towPoint(t_, y_).p_W, layout().positions(y_), first),
+                  shipSideLengthError());
 }
 
 void Simulator::countSnaps(StepReport& report)
@@ -544,7 +549,7 @@ void Simulator::acceptStep(StepReport& report)
   remesh(t_);
   project(t_);
   refreshOutputs();
-  report.tension_ship.add(tensions_.col(0).norm());
+  report.tension_ship.add(shipTension());
   report.tension_vehicle.add(tensions_.col(tensions_.cols() - 1).norm());
   countSnaps(report);
   checkBreak(report);

@@ -37,7 +37,12 @@ void Simulator::part(int element)
     end.v_W = L.velocities(y_).col(element - 1);
   }
   const int segments = data_.geometry.segments - element;
-  const StateLayout next{ segments + 1, true };
+  // The cable forward of the joint stays on the ship: `element` segments, the first as it was.
+  ship_side_ = data_.geometry;
+  ship_side_.segments = element;
+  ship_side_.end_body = false;
+  ship_side_.first_rate = ship_side_.first_acceleration = 0.0;
+  const StateLayout next{ segments + 1, true, element };
   StateVector y(next.size());
   next.positions(y) = L.positions(y_).rightCols(segments + 1);
   next.velocities(y) = L.velocities(y_).rightCols(segments + 1);
@@ -45,6 +50,8 @@ void Simulator::part(int element)
   next.payoutRate(y) = 0.0;
   next.freePosition(y) = end.p_W;
   next.freeVelocity(y) = end.v_W;
+  next.shipSidePositions(y) = L.positions(y_).leftCols(element);
+  next.shipSideVelocities(y) = L.velocities(y_).leftCols(element);
   data_.geometry.segments = segments;
   if (element > 0)
     data_.geometry.first_length = data_.geometry.nominal_length;
@@ -64,6 +71,8 @@ void Simulator::rejoin()
   if (!free_)
     return;
   free_ = false;
+  ship_side_ = noShipSide();
+  ship_side_tensions_.resize(3, 0);
   data_.geometry = model_->initialGeometry();
   y_.assign(layout().size(), 0.0);
   layout().cableOut(y_) = model_->cableLength();
@@ -86,6 +95,82 @@ void Simulator::checkBreak(StepReport& report)
   parting.tension = largest;
   report.parting = parting_event_ = parting;
   part(static_cast<int>(worst));
+}
+
+// The cable left on the ship (docs/solver.md §10): the prescribed sweep over its segments, from the ship's
+// tow point, its last joint free.
+ChainGeometry Simulator::noShipSide()
+{
+  ChainGeometry g;
+  g.segments = 0;
+  g.end_body = false;
+  return g;
+}
+
+void Simulator::shipSideDerivative(double t, const StateVector& y, StateVector& dydt) const
+{
+  const StateLayout L = layout();
+  if (L.remnant == 0)
+    return;
+  L.shipSidePositions(dydt) = L.shipSideVelocities(y);
+  ship_side_solver_.solve(*model_, ship_side_, data_, t, ship_(t), L.shipSidePositions(y), L.shipSideVelocities(y),
+                          L.shipSideVelocities(dydt));
+}
+
+void Simulator::shipSideOutputs()
+{
+  const StateLayout L = layout();
+  ship_side_tensions_.resize(3, L.remnant);
+  if (L.remnant == 0)
+    return;
+  L.shipSidePositions(dydt_) = L.shipSideVelocities(y_);
+  ship_side_solver_.solve(*model_, ship_side_, data_, t_, ship_(t_), L.shipSidePositions(y_), L.shipSideVelocities(y_),
+                          L.shipSideVelocities(dydt_), &ship_side_tensions_);
+}
+
+void Simulator::projectShipSide(double t)
+{
+  const StateLayout L = layout();
+  if (L.remnant == 0 || model_->cable().elastic())  // an elastic cable's segments stretch: no length to keep
+    return;
+  auto x = L.shipSidePositions(y_);
+  auto v = L.shipSideVelocities(y_);
+  const ShipEndState ship = ship_(t);
+  Eigen::Vector3d x_f = ship.p_W, v_f = ship.v_W;
+  for (int e = 0; e < L.remnant; ++e)
+  {
+    const Eigen::Vector3d s = (x.col(e) - x_f).normalized();
+    x.col(e) = x_f + ship_side_.elementLength(e) * s;
+    v.col(e) -= s.dot(v.col(e) - v_f) * s;
+    x_f = x.col(e);
+    v_f = v.col(e);
+  }
+}
+
+double Simulator::shipSideLengthError() const
+{
+  const StateLayout L = layout();
+  if (L.remnant == 0 || model_->cable().elastic())
+    return 0.0;
+  return maxRelativeLengthError(ship_side_, ship_(t_).p_W, L.shipSidePositions(y_));
+}
+
+Eigen::Matrix3Xd Simulator::shipSideJoints() const
+{
+  const StateLayout L = layout();
+  if (L.remnant == 0)
+    return Eigen::Matrix3Xd(3, 0);
+  Eigen::Matrix3Xd p(3, L.remnant + 1);
+  p.col(0) = ship_(t_).p_W;
+  p.rightCols(L.remnant) = L.shipSidePositions(y_);
+  return p;
+}
+
+double Simulator::shipTension() const
+{
+  if (!free_)
+    return tensions_.col(0).norm();
+  return ship_side_tensions_.cols() > 0 ? ship_side_tensions_.col(0).norm() : 0.0;
 }
 
 }  // namespace tow_sim

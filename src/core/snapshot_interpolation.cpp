@@ -76,6 +76,11 @@ TowSnapshot interpolate(const TowSnapshot& a, const TowSnapshot& b, double t)
   out.tow_point.a_W = lerp(a.tow_point.a_W, b.tow_point.a_W, w);
   out.joints = lerp(a.joints, b.joints, w);
   out.tensions = lerp(a.tensions, b.tensions, w);
+  if (a.ship_side.cols() == b.ship_side.cols())
+  {
+    out.ship_side = lerp(a.ship_side, b.ship_side, w);
+    out.ship_side_tensions = lerp(a.ship_side_tensions, b.ship_side_tensions, w);
+  }
   out.tension_ship = lerp(a.tension_ship, b.tension_ship, w);
   out.tension_vehicle = lerp(a.tension_vehicle, b.tension_vehicle, w);
   out.cable_length = lerp(a.cable_length, b.cable_length, w);

@@ -329,7 +329,9 @@ TowSnapshot TowRun::snapshot()
     throw std::runtime_error("non-finite state at t = " + std::to_string(s.t) + " s");
   s.slack = slackFlags(s.joints, s.tensions);
   elasticOutputs(s);
-  s.tension_ship = s.tensions.col(0).norm();
+  s.tension_ship = sim_.shipTension();  // parted: of the cable left on the ship (0: none)
+  s.ship_side = sim_.shipSideJoints();
+  s.ship_side_tensions = sim_.shipSideTensions();
   s.tension_vehicle = s.tensions.col(s.segments).norm();
   s.cable_length = sim_.cableLength();
   s.payout_rate = sim_.payoutRate();

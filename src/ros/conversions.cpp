@@ -205,7 +205,7 @@ geometry_msgs::WrenchStamped toShipTowForce(const TowSnapshot& s, const std_msgs
 {
   geometry_msgs::WrenchStamped w;
   w.header = header;
-  w.wrench.force = toVector3(-s.tensions.col(0));
+  w.wrench.force = toVector3(-shipPull(s));
   w.wrench.torque = toVector3(Eigen::Vector3d::Zero());
   return w;
 }

@@ -56,6 +56,22 @@ visualization_msgs::Marker cableMarker(const TowSnapshot& s, const NodeParams& p
                      params.tension_color_max);
 }
 
+// After a parting aft of the tow point, the cable left on the ship ("cable_ship_side"; deleted when none).
+visualization_msgs::Marker shipSideMarker(const TowSnapshot& s, const NodeParams& params,
+                                          const std_msgs::Header& header)
+{
+  const Eigen::Index n = s.ship_side.cols();
+  std::vector<double> tensions(static_cast<size_t>(n), 0.0);  // the last joint is free
+  for (Eigen::Index j = 0; j + 1 < n; ++j)
+    tensions[static_cast<size_t>(j)] = s.ship_side_tensions.col(j).norm();
+  visualization_msgs::Marker m = tensionLine(header, s.ship_side, tensions, std::vector<bool>(tensions.size(), false),
+                                             params.cable_marker_width, params.tension_color_max);
+  m.ns = "cable_ship_side";
+  if (n == 0)
+    m.action = visualization_msgs::Marker::DELETE;
+  return m;
+}
+
 // Hull (an ellipsoid from the nose to the tail point) and four fins at their actual deflections.
 void addVehicle(const TowSnapshot& s, const VehicleParams& vp, const NodeParams& params, const std_msgs::Header& header,
                 visualization_msgs::MarkerArray& array)
@@ -106,7 +122,7 @@ void addForceAndLabels(const TowSnapshot& s, const NodeParams& params, const std
   Marker arrow = baseMarker(header, "tow_force", 0, Marker::ARROW);
   const Eigen::Vector3d tow_point = s.tow_point.p_W;  // the ship's, also after a parting
   arrow.points.push_back(ros_conv::toPoint(tow_point));
-  arrow.points.push_back(ros_conv::toPoint(tow_point - params.force_arrow_scale * s.tensions.col(0)));
+  arrow.points.push_back(ros_conv::toPoint(tow_point - params.force_arrow_scale * shipPull(s)));
   arrow.scale.x = 0.4;
   arrow.scale.y = 0.8;
   arrow.scale.z = 1.0;
@@ -202,6 +218,7 @@ visualization_msgs::MarkerArray makeMarkers(const TowSnapshot& s, const VehicleP
 {
   visualization_msgs::MarkerArray array;
   array.markers.push_back(cableMarker(s, params, header));
+  array.markers.push_back(shipSideMarker(s, params, header));
   addVehicle(s, vehicle, params, header, array);
   addForceAndLabels(s, params, header, array);
   addShip(s, params, header, array);

@@ -221,6 +221,17 @@ TEST(CableParting, ASimpleBodyPartsAtTheBailAndSinksAtItsTerminalVelocity)
   EXPECT_NEAR(s.vehicle.v_cg_W.z(), -v_terminal, 1e-4 * v_terminal);
   EXPECT_LT(s.vehicle.v_cg_W.head<2>().norm(), 1e-9);  // straight down, tail first
   EXPECT_GT(s.depth, 50.0 + 20.0 * v_terminal);        // it did sink, and far
+  // The whole cable stays on the ship, hanging straight down (by symmetry) and pushing up on the tow point
+  // with its net buoyancy (b - w) L: the force on the ship, -T_1, is that, upward (the rigid chain in
+  // compression).
+  const double area = 0.25 * 3.14159265358979323846 * c.cable.diameter * c.cable.diameter;
+  const double lift = (c.environment.water_density * area - c.cable.mass_per_length) * c.environment.gravity * 50.0;
+  ASSERT_EQ(s.ship_side.cols(), c.cable.segments + 1);
+  std::printf("the cable left on the ship: T_1 (%.6f, %.6f, %.6f) N, closed form (0, 0, %.6f) N\n", shipPull(s).x(),
+              shipPull(s).y(), shipPull(s).z(), -lift);
+  EXPECT_NEAR(s.tension_ship, lift, 1e-6 * lift);
+  EXPECT_LT((shipPull(s) + Eigen::Vector3d(0.0, 0.0, lift)).norm(), 1e-6 * lift);
+  EXPECT_NEAR(s.ship_side(2, c.cable.segments), -50.0, 1e-9);  // still hanging at full length
 }
 
 TEST(CableParting, WithoutTheOptionTheCableHoldsWhateverTheTension)

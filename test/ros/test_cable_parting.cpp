@@ -16,6 +16,10 @@
 
 #include "tow_sim/CableParting.h"
 #include "tow_sim/CableState.h"
+#include "tow_sim/config/node_params.h"
+#include "tow_sim/core/tow_run.h"
+#include "tow_sim/ros/conversions.h"
+#include "tow_sim/ros/markers.h"
 
 namespace
 {
@@ -129,6 +133,56 @@ TEST(CableParting, TheNodeSaysWhereTheCablePartedAndTheVehicleSideSinks)
   ship.run(2.0);
   ASSERT_TRUE(ship.parting()) << "no second parting after ~reset";
   EXPECT_GT(ship.parting()->header.stamp, p->header.stamp);
+}
+
+// The node's outputs after a parting aft of the tow point (no node here: the conversions it publishes
+// with): a floating cable on a sinking body parts at the bail, and the whole cable stays on the ship,
+// hanging straight down and pushing up with its net buoyancy (b - w) L. ship/tow_force is that force,
+// the tow_force arrow points along it and the marker "cable_ship_side" draws the cable from the tow point.
+TEST(CableParting, AfterAPartingAtTheBailTheShipFeelsTheCableLeftOnIt)
+{
+  tow_sim::SimulationConfig c;
+  c.cable.length = 50.0;
+  c.cable.segments = 10;
+  c.cable.mass_per_length = 0.1;  // lighter than the water it displaces
+  c.cable.breaking_load = 100.0;  // the bail carries the vehicle's net weight, about 800 N
+  c.cable.break_at_breaking_load = true;
+  c.numerics.stepper = tow_sim::StepperType::kDopri5;
+  auto ship = std::make_shared<tow_sim::ShipHistory>(1.0, 100);
+  for (int i = 0; i <= 20; ++i)
+    ship->add(i, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), tow_sim::ShipPose());
+  tow_sim::InitialShape hanging;
+  hanging.type = tow_sim::InitialShape::Type::kHanging;
+  tow_sim::TowRun run(c, ship, hanging);
+  run.start(0.0);
+  run.advanceTo(1.0);
+  const tow_sim::TowSnapshot s = run.snapshot();
+  ASSERT_TRUE(s.parting);
+  ASSERT_EQ(s.parting->joint, 11);
+  const double area = 0.25 * M_PI * c.cable.diameter * c.cable.diameter;
+  const double lift = (c.environment.water_density * area - c.cable.mass_per_length) * c.environment.gravity * 50.0;
+
+  std_msgs::Header header;
+  header.frame_id = "odom";
+  const geometry_msgs::WrenchStamped force = tow_sim::ros_conv::toShipTowForce(s, header);
+  std::printf("after a parting at the bail: ship/tow_force (%.4f, %.4f, %.4f) N, closed form (0, 0, %.4f) N\n",
+              force.wrench.force.x, force.wrench.force.y, force.wrench.force.z, lift);
+  EXPECT_NEAR(force.wrench.force.z, lift, 1e-6 * lift);
+  EXPECT_NEAR(std::hypot(force.wrench.force.x, force.wrench.force.y), 0.0, 1e-6 * lift);
+
+  const tow_sim::NodeParams params;
+  const visualization_msgs::MarkerArray markers = tow_sim::makeMarkers(s, c.vehicle, nullptr, params, header);
+  int ship_side_points = -1;
+  double arrow_dz = 0.0;
+  for (const auto& m : markers.markers)
+  {
+    if (m.ns == "cable_ship_side" && m.action == visualization_msgs::Marker::ADD)
+      ship_side_points = static_cast<int>(m.points.size());
+    if (m.ns == "tow_force" && m.points.size() == 2)
+      arrow_dz = m.points[1].z - m.points[0].z;
+  }
+  EXPECT_EQ(ship_side_points, 11);  // the tow point and the ten joints aft of it
+  EXPECT_GT(arrow_dz, 0.0);         // the arrow shows the push up on the ship
 }
 
 }  // namespace

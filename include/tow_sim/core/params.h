@@ -82,7 +82,7 @@ struct CableParams
   std::optional<double> safe_working_load;  // [N] the node warns above it (unset: no limit), > 0 .. 1e9
   std::optional<double> breaking_load;      // [N] the node reports an error above it, >= safe_working_load .. 1e9
   // The cable parts at the joint where a tension first exceeds breaking_load (needs it): the part on the
-  // vehicle side goes on with a free end (physics.md, docs/solver.md §9); the ship side's is not simulated.
+  // vehicle side goes on with a free end (physics.md, docs/solver.md §9), the ship side hangs from the ship (§10).
   bool break_at_breaking_load = false;
   // The elastic, tension-only cable (physics.md §9): unset, the rigid inextensible chain (the report's).
   std::optional<double> axial_stiffness;  // [N] EA, > 0 .. 1e11

@@ -58,7 +58,25 @@ struct StateLayout
 {
   int joints = 0;     // nu + 1
   bool free = false;  // a parted cable: the free first joint's position and velocity follow (6 more)
-  std::size_t size() const { return 6 * static_cast<std::size_t>(joints) + 2 + (free ? 6 : 0); }
+  int remnant = 0;    // and the joints of the cable left on the ship, x_2 .. x_j: positions, velocities
+  std::size_t shipSideOffset() const { return 6 * static_cast<std::size_t>(joints) + 2 + (free ? 6 : 0); }
+  std::size_t size() const { return shipSideOffset() + 6 * static_cast<std::size_t>(remnant); }
+  Eigen::Map<Eigen::Matrix3Xd> shipSidePositions(std::vector<double>& y) const
+  {
+    return { y.data() + shipSideOffset(), 3, remnant };
+  }
+  Eigen::Map<const Eigen::Matrix3Xd> shipSidePositions(const std::vector<double>& y) const
+  {
+    return { y.data() + shipSideOffset(), 3, remnant };
+  }
+  Eigen::Map<Eigen::Matrix3Xd> shipSideVelocities(std::vector<double>& y) const
+  {
+    return { y.data() + shipSideOffset() + 3 * remnant, 3, remnant };
+  }
+  Eigen::Map<const Eigen::Matrix3Xd> shipSideVelocities(const std::vector<double>& y) const
+  {
+    return { y.data() + shipSideOffset() + 3 * remnant, 3, remnant };
+  }
   Eigen::Map<Eigen::Matrix3Xd> positions(std::vector<double>& y) const { return { y.data(), 3, joints }; }
   Eigen::Map<const Eigen::Matrix3Xd> positions(const std::vector<double>& y) const { return { y.data(), 3, joints }; }
   Eigen::Map<Eigen::Matrix3Xd> velocities(std::vector<double>& y) const { return { y.data() + 3 * joints, 3, joints }; }
@@ -196,6 +214,12 @@ public:
   // Where and when it parted at its breaking load (checkBreak; kept until rejoin() or restoreState(), so an
   // advance that throws after it does not lose it). Empty after a part() by hand.
   const std::optional<PartingEvent>& partingEvent() const { return parting_event_; }
+  // The cable left on the ship after a parting at joint j > 1 (j - 1 segments, its last joint free, no end
+  // body: docs/solver.md §10): its joints from the tow point (empty: none) and the pull of each segment on
+  // its forward joint [N]. shipTension() is |T_1| of whichever chain hangs from the ship (0: none).
+  Eigen::Matrix3Xd shipSideJoints() const;
+  const Eigen::Matrix3Xd& shipSideTensions() const { return ship_side_tensions_; }
+  double shipTension() const;
   // Parts the cable now at element e's forward joint (0: the tow point .. nu: the bail): the elements
   // forward of it leave the simulation, the joint's position and velocity become the free end's. Throws
   // std::logic_error if already parted, std::out_of_range for another e.
@@ -255,7 +279,10 @@ public:
   const ChainModel& model() const { return *model_; }
 
 private:
-  StateLayout layout() const { return StateLayout{ data_.geometry.jointCount(), free_ }; }
+  StateLayout layout() const
+  {
+    return StateLayout{ data_.geometry.jointCount(), free_, free_ ? ship_side_.segments : 0 };
+  }
   // The chain's first joint at (t, y): the ship's tow point, or the free end of a parted cable (its
   // acceleration unknown: 0 here).
   ShipEndState towPoint(double t, const StateVector& y) const;
@@ -297,6 +324,14 @@ private:
   std::vector<double> multipliers_;  // each element's axial multiplier at the current state [N]
   std::vector<char> slack_;          // elastic cable: each segment slack (for counting snaps)
   std::optional<PartingEvent> parting_event_;
+  ChainGeometry ship_side_ = noShipSide();  // parted: the cable left on the ship (segments 0: none)
+  mutable ChainSolver ship_side_solver_;    // workspace only
+  Eigen::Matrix3Xd ship_side_tensions_;
+  static ChainGeometry noShipSide();
+  void shipSideDerivative(double t, const StateVector& y, StateVector& dydt) const;
+  void shipSideOutputs();
+  void projectShipSide(double t);
+  double shipSideLengthError() const;
   bool free_ = false;  // parted: the first joint is free (its state after the payout rate)
   void countSnaps(StepReport& report);
   ImplicitStepper implicit_;

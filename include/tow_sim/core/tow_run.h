@@ -81,9 +81,21 @@ struct TowSnapshot
   bool vehicle_on_seabed = false;        // a hull end below the bottom
   std::optional<double> depth_setpoint;  // [m] the autopilot's (the equivalent depth in altitude mode)
   // The cable parted (cable.break_at_breaking_load) since the run started: joints then begin at the free
-  // end of the vehicle side (tow_point stays the ship's, tension_ship is 0) and segments are that side's.
+  // end of the vehicle side (tow_point stays the ship's) and segments are that side's; the cable left on
+  // the ship hangs from the tow point (ship_side: its joints, tow point first; its tensions T_1 ..; empty
+  // after a parting at the tow point), and tension_ship is its T_1 (0: none).
   std::optional<PartingEvent> parting;
+  Eigen::Matrix3Xd ship_side, ship_side_tensions;
 };
+
+// T_1 [N], world: the pull of the cable hanging from the ship on its tow point (the ship feels -T_1): the
+// whole cable's, or after a parting the ship side's (zero: none left on the ship).
+inline Eigen::Vector3d shipPull(const TowSnapshot& s)
+{
+  if (!s.parting)
+    return s.tensions.col(0);
+  return s.ship_side_tensions.cols() > 0 ? Eigen::Vector3d(s.ship_side_tensions.col(0)) : Eigen::Vector3d::Zero();
+}
 
 // The outputs at time t between two snapshots a, b of one run (a.t <= t <= b.t, else the nearer end):
 // linear in every continuous output (positions, velocities, tensions, loads, angles), the attitudes by
