@@ -463,7 +463,11 @@ void Simulator::countSnaps(StepReport& report)
 
 double Simulator::largestRelativeSpeed(double t) const
 {
-  return (layout().velocities(y_).colwise() - towPoint(t, y_).v_W).colwise().norm().maxCoeff();
+  const StateLayout L = layout();
+  double speed = (L.velocities(y_).colwise() - towPoint(t, y_).v_W).colwise().norm().maxCoeff();
+  if (L.remnant > 0)  // the cable left on the ship, relative to the ship
+    speed = std::max(speed, (L.shipSideVelocities(y_).colwise() - ship_(t).v_W).colwise().norm().maxCoeff());
+  return speed;
 }
 
 StepReport Simulator::advanceTo(double t_end)

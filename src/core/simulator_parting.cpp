@@ -62,6 +62,7 @@ void Simulator::part(int element)
   y_.swap(y);
   dydt_.assign(y_.size(), 0.0);
   free_ = true;
+  projectShipSide(t_);  // its first joint no longer moves away from the tow point with the payout
   refreshOutputs();
 }
 
@@ -71,8 +72,7 @@ void Simulator::rejoin()
   if (!free_)
     return;
   free_ = false;
-  ship_side_ = noShipSide();
-  ship_side_tensions_.resize(3, 0);
+  clearShipSide();
   data_.geometry = model_->initialGeometry();
   y_.assign(layout().size(), 0.0);
   layout().cableOut(y_) = model_->cableLength();
@@ -105,6 +105,12 @@ ChainGeometry Simulator::noShipSide()
   g.segments = 0;
   g.end_body = false;
   return g;
+}
+
+void Simulator::clearShipSide()
+{
+  ship_side_ = noShipSide();
+  ship_side_tensions_.resize(3, 0);
 }
 
 void Simulator::shipSideDerivative(double t, const StateVector& y, StateVector& dydt) const

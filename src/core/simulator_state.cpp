@@ -82,7 +82,7 @@ void Simulator::restoreState(const SimulatorState& s)
     throw std::invalid_argument(os.str());
   }
   parting_event_.reset();
-  ship_side_ = noShipSide();
+  clearShipSide();
   t_ = s.t;
   dt_ = s.dt;
   y_ = s.y;

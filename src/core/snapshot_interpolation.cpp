@@ -64,7 +64,8 @@ TowSnapshot interpolate(const TowSnapshot& a, const TowSnapshot& b, double t)
   out.max_strain = std::max(a.max_strain, b.max_strain);
   out.tension_ship_range = b.tension_ship_range;  // the extremes of the interval that ends at b
   out.tension_vehicle_range = b.tension_vehicle_range;
-  if (a.joints.cols() != b.joints.cols() || a.tensions.cols() != b.tensions.cols())
+  if (a.joints.cols() != b.joints.cols() || a.tensions.cols() != b.tensions.cols() || a.parted != b.parted ||
+      a.ship_side.cols() != b.ship_side.cols() || a.ship_side_tensions.cols() != b.ship_side_tensions.cols())
     return out;
   out.t = lerp(a.t, b.t, w);
   out.ship.x = lerp(a.ship.x, b.ship.x, w);
@@ -76,11 +77,8 @@ TowSnapshot interpolate(const TowSnapshot& a, const TowSnapshot& b, double t)
   out.tow_point.a_W = lerp(a.tow_point.a_W, b.tow_point.a_W, w);
   out.joints = lerp(a.joints, b.joints, w);
   out.tensions = lerp(a.tensions, b.tensions, w);
-  if (a.ship_side.cols() == b.ship_side.cols())
-  {
-    out.ship_side = lerp(a.ship_side, b.ship_side, w);
-    out.ship_side_tensions = lerp(a.ship_side_tensions, b.ship_side_tensions, w);
-  }
+  out.ship_side = lerp(a.ship_side, b.ship_side, w);
+  out.ship_side_tensions = lerp(a.ship_side_tensions, b.ship_side_tensions, w);
   out.tension_ship = lerp(a.tension_ship, b.tension_ship, w);
   out.tension_vehicle = lerp(a.tension_vehicle, b.tension_vehicle, w);
   out.cable_length = lerp(a.cable_length, b.cable_length, w);

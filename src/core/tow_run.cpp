@@ -330,6 +330,7 @@ TowSnapshot TowRun::snapshot()
   s.slack = slackFlags(s.joints, s.tensions);
   elasticOutputs(s);
   s.tension_ship = sim_.shipTension();  // parted: of the cable left on the ship (0: none)
+  s.parted = sim_.parted();
   s.ship_side = sim_.shipSideJoints();
   s.ship_side_tensions = sim_.shipSideTensions();
   s.tension_vehicle = s.tensions.col(s.segments).norm();

@@ -53,7 +53,7 @@ TEST(RemnantChain, HangingAtRestInVacuumEachJointCarriesTheWeightBelowIt)
   const double g = 9.81, w = r.segment_mass * g;
   EXPECT_LT(a.cwiseAbs().maxCoeff(), 1e-10);
   ASSERT_EQ(T.cols(), 4);
-  for (int k = 0; k < 4; ++k)  // T_k: the pull of element k on its forward joint, up
+  for (int k = 0; k < 4; ++k)  // T_k: the force on element k at its forward joint, up
     EXPECT_LT((T.col(k) - Eigen::Vector3d(0.0, 0.0, (4 - k) * w)).norm(), 1e-9 * w) << "joint " << k + 1;
 }
 

@@ -47,6 +47,42 @@ TEST(ShipSide, HangingInVacuumItStaysAndTheShipCarriesItsWeight)
   EXPECT_LT(sim.lengthError(), 1e-9);
 }
 
+// Parted while the winch pays out, the cable left on the ship stops paying out: its first segment keeps
+// its length, so its first joint no longer moves away from the tow point. A restored whole cable has no
+// ship side left over.
+TEST(ShipSide, PartedDuringAPayoutItKeepsItsLengthsAndARestoreClearsIt)
+{
+  CableParams cable;
+  cable.length = 100.0;
+  cable.segments = 10;
+  Environment vacuum;
+  vacuum.water_density = 0.0;
+  auto model = test::makeModel(cable, EndElementParams(), vacuum);
+  WinchParams winch;
+  winch.enabled = true;
+  Simulator sim(model, constantVelocityShip(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()), winch);
+  sim.reset(0.0,
+            straightChain(*model, Eigen::Vector3d::Zero(), Eigen::Vector3d(0.0, 0.0, -1.0), Eigen::Vector3d::Zero()));
+  const SimulatorState whole = sim.saveState();
+  sim.setWinchCommand(1.0);
+  sim.advanceTo(3.0);
+  ASSERT_GT(sim.payoutRate(), 0.5);
+  sim.part(3);
+  const Eigen::Matrix3Xd x = sim.shipSideJoints();
+  ASSERT_EQ(x.cols(), 4);
+  EXPECT_LT(sim.lengthError(), 1e-12);
+  EXPECT_LT(sim.advanceTo(4.0).max_length_error, 1e-6);               // each step's, before the projection
+  EXPECT_LT((sim.shipSideJoints() - x).cwiseAbs().maxCoeff(), 1e-9);  // hanging still, at rest
+  const double w = cable.mass_per_length * vacuum.gravity;
+  EXPECT_NEAR(sim.shipTension(), w * (x(2, 0) - x(2, 3)), 1e-9 * sim.shipTension());  // its whole weight
+
+  sim.restoreState(whole);
+  EXPECT_FALSE(sim.parted());
+  EXPECT_EQ(sim.shipSideJoints().cols(), 0);
+  EXPECT_EQ(sim.shipSideTensions().cols(), 0);
+  EXPECT_DOUBLE_EQ(sim.shipTension(), sim.tensions().col(0).norm());
+}
+
 TEST(ShipSide, TowedWithoutTangentialDragItLiesAtTheCriticalAngle)
 {
   CableParams cable;

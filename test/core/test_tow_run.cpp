@@ -162,6 +162,20 @@ TEST(TowRun, SnapshotsInterpolateBetweenTwoTimes)
   // A change of layout (the winch re-meshing): the nearer snapshot whole.
   right.joints.conservativeResize(3, right.joints.cols() + 1);
   EXPECT_EQ(interpolate(left, right, 10.1).joints, left.joints);
+  // Across a parting with the same joints (a cable left on the ship on one side only): the nearer whole.
+  TowSnapshot parted = b;
+  parted.parted = true;
+  parted.ship_side = Eigen::Matrix3Xd::Ones(3, 4);
+  parted.ship_side_tensions = Eigen::Matrix3Xd::Ones(3, 3);
+  EXPECT_EQ(interpolate(a, parted, 10.4).ship_side_tensions.cols(), 3);
+  EXPECT_EQ(interpolate(a, parted, 10.1).ship_side_tensions.cols(), 0);
+  TowSnapshot stale = parted, none = parted;  // both without joints on the ship, one with stale tensions
+  stale.ship_side.resize(3, 0);
+  stale.t = a.t;
+  none.ship_side.resize(3, 0);
+  none.ship_side_tensions.resize(3, 0);
+  EXPECT_EQ(interpolate(stale, none, 10.1).ship_side_tensions.cols(), 3);
+  EXPECT_EQ(interpolate(stale, none, 10.4).ship_side_tensions.cols(), 0);
 }
 
 }  // namespace

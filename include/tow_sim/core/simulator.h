@@ -215,7 +215,7 @@ public:
   // advance that throws after it does not lose it). Empty after a part() by hand.
   const std::optional<PartingEvent>& partingEvent() const { return parting_event_; }
   // The cable left on the ship after a parting at joint j > 1 (j - 1 segments, its last joint free, no end
-  // body: docs/solver.md §10): its joints from the tow point (empty: none) and the pull of each segment on
+  // body: docs/solver.md §10): its joints from the tow point (empty: none) and the force on each segment at
   // its forward joint [N]. shipTension() is |T_1| of whichever chain hangs from the ship (0: none).
   Eigen::Matrix3Xd shipSideJoints() const;
   const Eigen::Matrix3Xd& shipSideTensions() const { return ship_side_tensions_; }
@@ -328,6 +328,7 @@ private:
   mutable ChainSolver ship_side_solver_;    // workspace only
   Eigen::Matrix3Xd ship_side_tensions_;
   static ChainGeometry noShipSide();
+  void clearShipSide();  // none (rejoin, restoreState)
   void shipSideDerivative(double t, const StateVector& y, StateVector& dydt) const;
   void shipSideOutputs();
   void projectShipSide(double t);

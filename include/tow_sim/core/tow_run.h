@@ -85,14 +85,15 @@ struct TowSnapshot
   // the ship hangs from the tow point (ship_side: its joints, tow point first; its tensions T_1 ..; empty
   // after a parting at the tow point), and tension_ship is its T_1 (0: none).
   std::optional<PartingEvent> parting;
+  bool parted = false;  // the cable is parted now (also after a part() by hand, which has no event)
   Eigen::Matrix3Xd ship_side, ship_side_tensions;
 };
 
-// T_1 [N], world: the pull of the cable hanging from the ship on its tow point (the ship feels -T_1): the
-// whole cable's, or after a parting the ship side's (zero: none left on the ship).
+// T_1 [N], world: the force on the cable hanging from the ship at its tow point (the ship feels -T_1):
+// the whole cable's, or after a parting the ship side's (zero: none left on the ship).
 inline Eigen::Vector3d shipPull(const TowSnapshot& s)
 {
-  if (!s.parting)
+  if (!s.parted)
     return s.tensions.col(0);
   return s.ship_side_tensions.cols() > 0 ? Eigen::Vector3d(s.ship_side_tensions.col(0)) : Eigen::Vector3d::Zero();
 }
