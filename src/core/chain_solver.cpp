@@ -41,7 +41,8 @@ void ChainSolver::solve(const ChainModel& model, const ChainGeometry& geometry, 
 Eigen::Vector3d ChainSolver::solveFree(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data,
                                        double t, const ShipEndState& first, const Eigen::Ref<const Eigen::Matrix3Xd>& x,
                                        const Eigen::Ref<const Eigen::Matrix3Xd>& v, Eigen::Ref<Eigen::Matrix3Xd> a,
-                                       Eigen::Matrix3Xd* tensions, std::vector<double>* multipliers)
+                                       Eigen::Matrix3Xd* tensions, std::vector<double>* multipliers,
+                                       const Eigen::Vector3d& first_force)
 {
   // No winch pays out a free chain: its first element keeps its length (whatever the geometry it came from).
   ChainGeometry free_geometry = geometry;
@@ -49,7 +50,7 @@ Eigen::Vector3d ChainSolver::solveFree(const ChainModel& model, const ChainGeome
   terms_.resize(static_cast<size_t>(free_geometry.elementCount()));
   elementTerms(model, free_geometry, data, t, first, x, v);
   sweep_.factor(terms_);
-  return sweep_.solveFree(terms_, a, tensions, multipliers);
+  return sweep_.solveFree(terms_, a, tensions, multipliers, first_force);
 }
 
 // (S1)-(S6): each element's loads (ChainModel::elementDynamics) and its Newton-Euler equations projected
@@ -151,10 +152,11 @@ void ChainSweep::solve(const std::vector<ElementTerms>& terms, const Eigen::Vect
 // (S22): nothing pulls on the first joint, T_1 = K_1 a_1 + tau_1 = 0. K_1, the apparent inertia of the whole
 // chain at that joint, is regular when its elements have mass.
 Eigen::Vector3d ChainSweep::solveFree(const std::vector<ElementTerms>& terms, Eigen::Ref<Eigen::Matrix3Xd> a,
-                                      Eigen::Matrix3Xd* tensions, std::vector<double>* multipliers)
+                                      Eigen::Matrix3Xd* tensions, std::vector<double>* multipliers,
+                                      const Eigen::Vector3d& first_force)
 {
   loads(terms);
-  const Eigen::Vector3d a_first = -factors_.front().K.partialPivLu().solve(tau_.front());
+  const Eigen::Vector3d a_first = factors_.front().K.partialPivLu().solve(first_force - tau_.front());
   forward(terms, a_first, a, tensions, multipliers);
   return a_first;
 }

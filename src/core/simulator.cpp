@@ -346,9 +346,10 @@ void Simulator::derivative(double t, const StateVector& y, StateVector& dydt) co
   Eigen::Map<Eigen::Matrix3Xd> a = L.velocities(dydt);
   if (free_)
   {
+    const ShipEndState end = towPoint(t, y);
     L.freePosition(dydt) = L.freeVelocity(y);
-    L.freeVelocity(dydt) =
-        solver_.solveFree(*model_, geometry, data_, t, towPoint(t, y), L.positions(y), L.velocities(y), a);
+    L.freeVelocity(dydt) = solver_.solveFree(*model_, geometry, data_, t, end, L.positions(y), L.velocities(y), a,
+                                             nullptr, nullptr, freeEndContact(geometry, end));
     shipSideDerivative(t, y, dydt);
   }
   else
@@ -367,8 +368,10 @@ void Simulator::refreshOutputs()
   if (free_)
   {
     L.freePosition(dydt_) = L.freeVelocity(y_);
-    L.freeVelocity(dydt_) = solver_.solveFree(*model_, data_.geometry, data_, t_, towPoint(t_, y_), L.positions(y_),
-                                              L.velocities(y_), accelerations_, &tensions_, &multipliers_);
+    const ShipEndState end = towPoint(t_, y_);
+    L.freeVelocity(dydt_) =
+        solver_.solveFree(*model_, data_.geometry, data_, t_, end, L.positions(y_), L.velocities(y_), accelerations_,
+                          &tensions_, &multipliers_, freeEndContact(data_.geometry, end));
     shipSideOutputs();
   }
   else

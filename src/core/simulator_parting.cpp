@@ -107,6 +107,16 @@ ChainGeometry Simulator::noShipSide()
   return g;
 }
 
+Eigen::Vector3d Simulator::freeEndContact(const ChainGeometry& geometry, const ShipEndState& end) const
+{
+  const Seabed* bottom = model_->seabed();
+  if (!bottom || geometry.segments == 0)
+    return Eigen::Vector3d::Zero();
+  const double carried = 0.5 * geometry.elementLength(0);  // as each segment's aft joint (ChainModel::forEachContact)
+  return bottom->contactForce(end.p_W, end.v_W, bottom->params().stiffness * carried,
+                              bottom->params().damping * carried);
+}
+
 void Simulator::clearShipSide()
 {
   ship_side_ = noShipSide();

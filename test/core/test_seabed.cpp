@@ -1,6 +1,7 @@
 // The seabed: the grid interpolates and tilts its normal as the slope says; contact pushes out and never
 // pulls, friction stays within mu N; a cable laid on the bottom at rest carries no tension gradient
-// where it lies and sinks in by w/k; a vehicle towed into a rising slope is lifted over it.
+// where it lies and sinks in by w/k; a vehicle towed into a rising slope is lifted over it; a parted
+// cable's free end lies on the bottom like every other joint.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -123,6 +124,37 @@ TEST(Seabed, CableLaidOnTheBottomAtRestHasNoTensionGradientWhereItLies)
   EXPECT_LT(worst_lying_gradient, 1e-3 * w);
   EXPECT_LT(worst_hanging, 1e-3 * w);
   EXPECT_LT(worst_sink, 0.01 * w / sp.stiffness);
+}
+
+// A cable lying level on a flat bottom parts at its first joint (Simulator::part(0)): the free end stays
+// on the bottom, sunk in by w/k like the joints aft of it, carrying half its segment's net weight w l/2.
+TEST(Seabed, APartedCablesFreeEndLiesOnTheBottom)
+{
+  CableParams cable;
+  cable.length = 100.0;
+  cable.segments = 10;
+  SeabedParams flat;
+  flat.type = SeabedParams::Type::kFlat;
+  flat.depth = 50.0;
+  const Environment env;
+  auto model = test::makeModel(cable, EndElementParams(), env, NumericsParams(), std::make_shared<Seabed>(flat));
+  const Eigen::Vector3d tow_point(0.0, 0.0, -50.0);  // the chain's first joint on the bottom, not a ship's
+  Simulator sim(model, constantVelocityShip(tow_point, Eigen::Vector3d::Zero()));
+  sim.reset(0.0, straightChain(*model, tow_point, Eigen::Vector3d(-1.0, 0.0, 0.0), Eigen::Vector3d::Zero()));
+  sim.part(0);
+  sim.advanceTo(30.0);
+  const double area = 0.25 * M_PI * cable.diameter * cable.diameter;
+  const double w = (cable.mass_per_length - env.water_density * area) * env.gravity;  // [N/m]
+  const double sunk = w / flat.stiffness;
+  const Eigen::Matrix3Xd x = sim.jointPositions();  // the free end first
+  std::printf(
+      "parted on the bottom: free end %.3e m below it, the next joint %.3e m (w/k = %.3e m); T_1 %.4f N "
+      "(w l/2 = %.4f N)\n",
+      -50.0 - x(2, 0), -50.0 - x(2, 1), sunk, sim.tensions().col(0).norm(), 0.5 * w * 10.0);
+  EXPECT_NEAR(-50.0 - x(2, 0), sunk, 1e-3 * sunk);
+  EXPECT_NEAR(-50.0 - x(2, 1), sunk, 1e-3 * sunk);
+  EXPECT_NEAR(sim.tensions().col(0).z(), 0.5 * w * 10.0, 1e-3 * w);  // the bottom's push on the free end
+  EXPECT_LT(std::abs(x(0, 0)), 1e-4);                                // nothing pulled it along
 }
 
 // A 300 m tow at 2 m/s over 125 m of water that shoals to 70 m between x = 400 and 900 m.

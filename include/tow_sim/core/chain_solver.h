@@ -46,10 +46,12 @@ public:
   // not null, the tension at each element's forward joint and the axial multiplier mu (compression positive).
   void solve(const std::vector<ElementTerms>& terms, const Eigen::Vector3d& a_first, Eigen::Ref<Eigen::Matrix3Xd> a,
              Eigen::Matrix3Xd* tensions = nullptr, std::vector<double>* multipliers = nullptr);
-  // The same for a free first joint (nothing pulls on it: the end of a parted cable): T = K a + tau = 0
-  // there gives its acceleration (S22), returned; then the forward sweep from it (its tension is zero).
+  // The same for a free first joint (the end of a parted cable): T = K a + tau = F there, F the force on
+  // it from outside (the seabed's; 0: nothing pulls on it), gives its acceleration (S22), returned; then
+  // the forward sweep from it (its tension is F).
   Eigen::Vector3d solveFree(const std::vector<ElementTerms>& terms, Eigen::Ref<Eigen::Matrix3Xd> a,
-                            Eigen::Matrix3Xd* tensions = nullptr, std::vector<double>* multipliers = nullptr);
+                            Eigen::Matrix3Xd* tensions = nullptr, std::vector<double>* multipliers = nullptr,
+                            const Eigen::Vector3d& first_force = Eigen::Vector3d::Zero());
 
 private:
   void loads(const std::vector<ElementTerms>& terms);  // the vector pass (S9)-(S13)
@@ -85,11 +87,13 @@ public:
   // A chain whose first joint is free instead of following the ship (the vehicle side of a parted cable, its
   // geometry's segments those aft of the break, 0 for the end body alone): `first` holds that joint's
   // position and velocity (its acceleration is ignored); x, v, a, tensions and multipliers as solve() for
-  // the joints aft of it. Returns the first joint's acceleration (S22); T_1 = 0.
+  // the joints aft of it. Returns the first joint's acceleration (S22); T_1 = first_force, the force on
+  // the first joint from outside (the seabed's; zero: nothing pulls on it).
   Eigen::Vector3d solveFree(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data, double t,
                             const ShipEndState& first, const Eigen::Ref<const Eigen::Matrix3Xd>& x,
                             const Eigen::Ref<const Eigen::Matrix3Xd>& v, Eigen::Ref<Eigen::Matrix3Xd> a,
-                            Eigen::Matrix3Xd* tensions = nullptr, std::vector<double>* multipliers = nullptr);
+                            Eigen::Matrix3Xd* tensions = nullptr, std::vector<double>* multipliers = nullptr,
+                            const Eigen::Vector3d& first_force = Eigen::Vector3d::Zero());
   // The element equations of the last solve (the implicit stepper linearises around them).
   const std::vector<ElementTerms>& terms() const { return terms_; }
 

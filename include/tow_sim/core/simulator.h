@@ -329,6 +329,9 @@ private:
   Eigen::Matrix3Xd ship_side_tensions_;
   static ChainGeometry noShipSide();
   void clearShipSide();  // none (rejoin, restoreState)
+  // The seabed's force on the free end of the vehicle side (at its first joint, the contact of half the
+  // first segment's length; zero without a seabed or for the end body alone).
+  Eigen::Vector3d freeEndContact(const ChainGeometry& geometry, const ShipEndState& end) const;
   void shipSideDerivative(double t, const StateVector& y, StateVector& dydt) const;
   void shipSideOutputs();
   void projectShipSide(double t);
