@@ -18,7 +18,7 @@ void segmentJacobian(const ChainModel& model, int e, double t, const ElementKine
                      const ChainGeometry& geometry, const ChainData& data, ElementJacobian& out)
 {
   const Eigen::Matrix3d I3 = Eigen::Matrix3d::Identity();
-  const CableSegmentModel seg = e == 0 ? model.firstSegment(geometry) : model.segment();
+  const CableSegmentModel seg = model.segmentModel(e, geometry);
   const double rate = e == 0 ? geometry.first_rate : 0.0;
   // The first segment's cable moves at the payout rate along it (ChainModel::elementDynamics): the same
   // derivatives, at the shifted velocity.
@@ -40,7 +40,7 @@ void segmentJacobian(const ChainModel& model, int e, double t, const ElementKine
   }
   Matrix6d dw_dx = Matrix6d::Zero();
   // An elastic segment takes the contact at its aft joint on that joint itself (ChainSolver).
-  const bool elastic = model.cable().elastic();
+  const bool elastic = model.elastic();
   Eigen::Matrix3d contact_p = Eigen::Matrix3d::Zero(), contact_v = Eigen::Matrix3d::Zero();
   if (const Seabed* bottom = model.seabed())
   {
@@ -70,6 +70,8 @@ void segmentJacobian(const ChainModel& model, int e, double t, const ElementKine
   out.dh_dx = J.transpose() * dw_dx;
   out.dh_dv.bottomRightCorner<3, 3>() += contact_v;
   out.dh_dx.bottomRightCorner<3, 3>() += contact_p;
+  if (const JointBody* point = model.bodyAft(e, geometry))  // its drag on the aft joint (S23)
+    out.dh_dv.bottomRightCorner<3, 3>() += point->forceVelocityJacobian(data.environment, t, k.x_a, k.v_a);
 }
 
 // The end body: central differences of its projected loads over x_f, x_a, v_f, v_a.
@@ -147,8 +149,8 @@ void elementJacobian(const ChainModel& model, int e, double t, const ElementKine
   else
     endBodyJacobian(model, e, t, k, geometry, data, accelerations, out);
   addGeometricStiffness(k, mu, out);
-  if (model.cable().elastic() && e < geometry.segments)
-    addAxialStiffness(model.cable(), geometry.elementLength(e), k, out);
+  if (model.elastic() && e < geometry.segments)
+    addAxialStiffness(model.segmentCable(e, geometry), geometry.elementLength(e), k, out);
 }
 
 }  // namespace tow_sim

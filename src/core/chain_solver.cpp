@@ -65,7 +65,7 @@ void ChainSolver::elementTerms(const ChainModel& model, const ChainGeometry& geo
     const Eigen::Vector3d x_f = e == 0 ? ship.p_W : Eigen::Vector3d(x.col(e - 1));
     const Eigen::Vector3d v_f = e == 0 ? ship.v_W : Eigen::Vector3d(v.col(e - 1));
     const ElementKinematics k = ElementKinematics::fromJoints(x_f, x.col(e), v_f, v.col(e));
-    const bool elastic = model.cable().elastic() && e < geometry.segments;
+    const bool elastic = model.elastic() && e < geometry.segments;
     model.elementDynamics(e, t, k, geometry, data, body, !elastic);
     // While the winch changes the first segment's length L, its axis s = (x_a - x_f)/L turns with
     // dw/dt = s x (a_a - a_f)/L - 2 (L'/L) w: the known part goes to the loads.
@@ -84,10 +84,15 @@ void ChainSolver::elementTerms(const ChainModel& model, const ChainGeometry& geo
     m.h_a = J.rightCols<3>().transpose() * body.wrench;
     m.s = k.s;
     m.constrained = !elastic;
+    if (const JointBody* point = model.bodyAft(e, geometry))  // (S23): a point body lumped on the aft joint
+    {
+      m.M_aa.diagonal().array() += point->inertia();
+      m.h_a += point->force(data.environment, t, k.x_a, k.v_a);
+    }
     if (elastic)
     {
-      addStretch(model.cable(), geometry.elementLength(e),
-                 (e == 0 ? model.firstSegment(geometry) : model.segment()).mass, k, m);
+      addStretch(model.segmentCable(e, geometry), geometry.elementLength(e), model.segmentModel(e, geometry).mass, k,
+                 m);
       m.h_a += model.segmentContactForce(e, k, geometry);  // at its aft joint itself
       continue;
     }

@@ -139,7 +139,7 @@ EquilibriumResult steadyTowEquilibrium(const ChainModel& model, const ChainData&
   // repeat the shooting with the depths and stretches of the previous pass until they settle. A rigid
   // cable in a uniform current needs one pass.
   const bool depth_dependent = !data.environment.current_profile.empty();
-  const bool repeat = depth_dependent || model.cable().elastic();
+  const bool repeat = depth_dependent || model.elastic();
   Eigen::Matrix3Xd joints = tow_point_W.replicate(1, n);
   EquilibriumResult result;
   for (int pass = 0; pass < (repeat ? kMaxPasses : 1); ++pass)
@@ -180,16 +180,16 @@ std::vector<double> elementLengths(const ChainModel& model, const ChainData& dat
 {
   const int n = data.geometry.elementCount();
   std::vector<double> lengths(static_cast<size_t>(n));
-  const CableParams& cable = model.cable();
   for (int e = 0; e < n; ++e)
   {
     double& length = lengths[static_cast<size_t>(e)] = data.geometry.elementLength(e);
-    if (!stretched || !cable.elastic() || e >= data.geometry.segments)
+    if (!stretched || !model.elastic() || e >= data.geometry.segments)
       continue;
     const Eigen::Matrix3Xd& x = stretched->state.x;
     const Eigen::Vector3d s = (x.col(e) - (e == 0 ? tow_point_W : Eigen::Vector3d(x.col(e - 1)))).normalized();
     const Eigen::Vector3d aft = stretched->tensions.col(e + 1);
-    length *= 1.0 + std::max(-0.5 * s.dot(stretched->tensions.col(e) + aft), 0.0) / *cable.axial_stiffness;
+    length *= 1.0 + std::max(-0.5 * s.dot(stretched->tensions.col(e) + aft), 0.0) /
+                        *model.segmentCable(e, data.geometry).axial_stiffness;
   }
   return lengths;
 }

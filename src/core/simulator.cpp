@@ -8,6 +8,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "tow_sim/core/winch.h"
+
 namespace tow_sim
 {
 namespace odeint = boost::numeric::odeint;
@@ -187,24 +189,6 @@ double Simulator::payoutRate() const
   return layout().payoutRate(y_);
 }
 
-double Simulator::winchAcceleration(double length, double rate) const
-{
-  if (!winch_.enabled)
-    return 0.0;
-  // Target rate: the command within the rate limit, slowing before each length limit so that the
-  // lagged rate never carries the cable past it: no faster than a stop at half the deceleration limit
-  // allows (room for the lag), and near the limit proportional to the distance left with gain
-  // 1/(4 tau), which makes the last approach critically damped: the length creeps up to the limit
-  // without crossing it and the acceleration stays within its limit.
-  const double a = winch_.max_acceleration, tau = winch_.response_time;
-  const double k = 0.25 / tau;
-  const double to_max = std::max(0.0, winch_.max_length - length), to_min = std::max(0.0, length - winch_.min_length);
-  double target = std::clamp(data_.winch_command, -winch_.max_rate, winch_.max_rate);
-  target = std::min({ target, std::sqrt(a * to_max), k * to_max });
-  target = std::max({ target, -std::sqrt(a * to_min), -k * to_min });
-  return std::clamp((target - rate) / tau, -a, a);
-}
-
 ChainGeometry Simulator::geometryOf(const StateVector& y) const
 {
   ChainGeometry g = data_.geometry;
@@ -212,9 +196,9 @@ ChainGeometry Simulator::geometryOf(const StateVector& y) const
     return g;
   const StateLayout L{ g.jointCount() };
   const double length = L.cableOut(y), rate = L.payoutRate(y);
-  g.first_length = std::max(length - (g.segments - 1) * g.nominal_length, 1e-9);
+  g.first_length = std::max(length - g.lengthAftOfFirst(), 1e-9);
   g.first_rate = rate;
-  g.first_acceleration = winchAcceleration(length, rate);
+  g.first_acceleration = winchAcceleration(winch_, data_.winch_command, length, rate);
   return g;
 }
 
@@ -231,14 +215,14 @@ bool Simulator::remesh(double t)
   const double split_above = winch_.segment_max_fraction * d * (1.0 + 1e-6);
   const double merge_below = winch_.segment_min_fraction * d * (1.0 - 1e-6);
   const bool split = data_.geometry.first_length > split_above;
-  const bool merge = !split && data_.geometry.first_length < merge_below && data_.geometry.segments >= 2;
+  const bool merge = !split && data_.geometry.first_length < merge_below && firstSectionSegments() >= 2;
   if (!split && !merge)
     return false;
   for (int pass = 0; pass < 100000; ++pass)
   {
     if (split && data_.geometry.first_length > split_above)
       splitFirstSegment(t);
-    else if (merge && data_.geometry.first_length < merge_below && data_.geometry.segments >= 2)
+    else if (merge && data_.geometry.first_length < merge_below && firstSectionSegments() >= 2)
       mergeFirstSegment();
     else
       break;
@@ -294,10 +278,12 @@ void Simulator::mergeFirstSegment()
 
 void Simulator::restoreLayout(int segments, double cable_out)
 {
-  const double first = cable_out - (segments - 1) * data_.geometry.nominal_length;
+  ChainGeometry candidate = data_.geometry;
+  candidate.segments = segments;
+  const double first = cable_out - candidate.lengthAftOfFirst();
   const bool fixed_length_differs =
       !winch_.enabled && std::abs(cable_out - model_->cableLength()) > 1e-9 * model_->cableLength();
-  if (segments < 1 || segments > 100000 || !std::isfinite(cable_out) || !(first > 0.0) ||
+  if (segments <= candidate.aftSectionSegments() || segments > 100000 || !std::isfinite(cable_out) || !(first > 0.0) ||
       (winch_.enabled && (cable_out < winch_.min_length || cable_out > winch_.max_length)) ||
       (!winch_.enabled && (segments != model_->segments() || fixed_length_differs)))
     throw std::invalid_argument("restoreLayout: " + std::to_string(segments) + " segments and " +
@@ -409,7 +395,7 @@ void Simulator::project(double t)
   Eigen::Vector3d x_f = ship.p_W;
   Eigen::Vector3d v_f = ship.v_W;
   // An elastic cable's segments stretch: only its end body has a length to keep.
-  const int first = model_->cable().elastic() ? data_.geometry.segments : 0;
+  const int first = model_->elastic() ? data_.geometry.segments : 0;
   for (int e = 0; e < L.joints; ++e)
   {
     if (e < first)
@@ -432,14 +418,14 @@ void Simulator::project(double t)
 
 double Simulator::lengthError() const
 {
-  const int first = model_->cable().elastic() ? data_.geometry.segments : 0;
+  const int first = model_->elastic() ? data_.geometry.segments : 0;
   return std::max(maxRelativeLengthError(data_.geometry, towPoint(t_, y_).p_W, layout().positions(y_), first),
                   shipSideLengthError());
 }
 
 void Simulator::countSnaps(StepReport& report)
 {
-  if (!model_->cable().elastic())
+  if (!model_->elastic())
     return;
   // A segment goes slack when it carries no tension at or below its rest length (not when its damping
   // alone zeroes the tension of a still stretched segment) and snaps when it carries tension again. A

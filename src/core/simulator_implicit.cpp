@@ -6,6 +6,7 @@
 #include <string>
 
 #include "tow_sim/core/simulator.h"
+#include "tow_sim/core/winch.h"
 
 namespace tow_sim
 {
@@ -40,8 +41,12 @@ void Simulator::linearise()
     const StateLayout L = layout();
     const double length = L.cableOut(y_), rate = L.payoutRate(y_);
     const double dl = 1e-6 * std::max(1.0, length), dr = 1e-6;
-    d_length = (winchAcceleration(length + dl, rate) - winchAcceleration(length - dl, rate)) / (2.0 * dl);
-    d_rate = (winchAcceleration(length, rate + dr) - winchAcceleration(length, rate - dr)) / (2.0 * dr);
+    d_length = (winchAcceleration(winch_, data_.winch_command, length + dl, rate) -
+                winchAcceleration(winch_, data_.winch_command, length - dl, rate)) /
+               (2.0 * dl);
+    d_rate = (winchAcceleration(winch_, data_.winch_command, length, rate + dr) -
+              winchAcceleration(winch_, data_.winch_command, length, rate - dr)) /
+             (2.0 * dr);
   }
   const StateLayout L = layout();
   implicit_.linearise(*model_, data_.geometry, data_, t_, ship_(t_), L.positions(y_), L.velocities(y_), accelerations_,

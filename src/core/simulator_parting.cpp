@@ -41,20 +41,24 @@ void Simulator::part(int element)
   ship_side_ = data_.geometry;
   ship_side_.segments = element;
   ship_side_.end_body = false;
+  ship_side_.aft_segments = segments;  // the whole cable's segments aft of it: the vehicle side's
   ship_side_.first_rate = ship_side_.first_acceleration = 0.0;
   const StateLayout next{ segments + 1, true, element };
   StateVector y(next.size());
   next.positions(y) = L.positions(y_).rightCols(segments + 1);
   next.velocities(y) = L.velocities(y_).rightCols(segments + 1);
-  next.cableOut(y) = element == 0 ? L.cableOut(y_) : segments * data_.geometry.nominal_length;
+  // The vehicle side's first segment keeps its section's length (the winch's first segment stays on the ship).
+  const double first_length = element == 0 ? data_.geometry.first_length
+                                           : (element < data_.geometry.segments ? data_.geometry.elementLength(element)
+                                                                                : data_.geometry.nominal_length);
   next.payoutRate(y) = 0.0;
   next.freePosition(y) = end.p_W;
   next.freeVelocity(y) = end.v_W;
   next.shipSidePositions(y) = L.positions(y_).leftCols(element);
   next.shipSideVelocities(y) = L.velocities(y_).leftCols(element);
   data_.geometry.segments = segments;
-  if (element > 0)
-    data_.geometry.first_length = data_.geometry.nominal_length;
+  data_.geometry.first_length = first_length;
+  next.cableOut(y) = element == 0 ? L.cableOut(y_) : data_.geometry.cableLength();
   data_.geometry.first_rate = data_.geometry.first_acceleration = 0.0;
   data_.winch_command = 0.0;
   if (!slack_.empty())
@@ -82,7 +86,7 @@ void Simulator::rejoin()
 
 void Simulator::checkBreak(StepReport& report)
 {
-  const CableParams& cable = model_->cable();
+  const CableParams& cable = model_->cable();  // breaking_load: the first section's
   if (free_ || !cable.break_at_breaking_load || !cable.breaking_load)
     return;
   Eigen::Index worst = 0;
@@ -147,7 +151,7 @@ void Simulator::shipSideOutputs()
 void Simulator::projectShipSide(double t)
 {
   const StateLayout L = layout();
-  if (L.remnant == 0 || model_->cable().elastic())  // an elastic cable's segments stretch: no length to keep
+  if (L.remnant == 0 || model_->elastic())  // an elastic cable's segments stretch: no length to keep
     return;
   auto x = L.shipSidePositions(y_);
   auto v = L.shipSideVelocities(y_);
@@ -166,7 +170,7 @@ void Simulator::projectShipSide(double t)
 double Simulator::shipSideLengthError() const
 {
   const StateLayout L = layout();
-  if (L.remnant == 0 || model_->cable().elastic())
+  if (L.remnant == 0 || model_->elastic())
     return 0.0;
   return maxRelativeLengthError(ship_side_, ship_(t_).p_W, L.shipSidePositions(y_));
 }

@@ -140,12 +140,12 @@ ChainState TowRun::initialState(double t, std::string* warning) const
   {
     const std::vector<double> lengths = segmentLengths(tow.p_W, geometry.segments, state.x);
     liftAboveSeabed(*model_->seabed(), state);
-    if (model_->cable().elastic())
+    if (model_->elastic())
       layOut(tow.p_W, lengths, state.x);
   }
   // An elastic cable starts with no segment stretching (else a heaving tow point would start it with a jerk
   // of its axial damping); the projection does this for rigid links.
-  if (model_->cable().elastic())
+  if (model_->elastic())
     removeStretchRates(tow, geometry.segments, state);
   return state;
 }
@@ -300,7 +300,7 @@ void TowRun::applySetpoint(const AutopilotSetpoint& sp)
 
 void TowRun::elasticOutputs(TowSnapshot& s)
 {
-  if (model_->cable().elastic())
+  if (model_->elastic())
   {
     // A segment is slack when it carries no tension (the end body keeps the rigid rule).
     const std::vector<double>& mu = sim_.axialMultipliers();
@@ -310,7 +310,7 @@ void TowRun::elasticOutputs(TowSnapshot& s)
       max_strain_ = std::max(max_strain_, eps);
   }
   s.snap_count = snap_count_;
-  s.max_strain = model_->cable().elastic() ? max_strain_ : 0.0;
+  s.max_strain = model_->elastic() ? max_strain_ : 0.0;
   max_strain_ = -std::numeric_limits<double>::infinity();
 }
 

@@ -1,5 +1,5 @@
 // The right-hand side of the chain: joint accelerations and every joint's tension in O(nu). Derived in
-// docs/solver.md, whose equation numbers (S1) ... (S14) the code cites.
+// docs/solver.md, whose equation numbers (S1) ... (S23) the code cites; §11 the cable sections and point bodies.
 //
 // Three passes (pinocchio's aba.hxx reads the same way):
 //   elementTerms   each element's Newton-Euler equations projected onto its two joints (S1)-(S6);

@@ -291,8 +291,9 @@ private:
   // The element lengths for the state y at time t: the first segment from the cable out, its rates from
   // the winch law (the model's as configured while the winch is off).
   ChainGeometry geometryOf(const StateVector& y) const;
-  double winchAcceleration(double length, double rate) const;  // [m/s^2] the winch's rate law
   bool remesh(double t);                                       // split or merge the first segment
+  // Segments of the first section now (the winch's: the sections aft of it keep theirs).
+  int firstSectionSegments() const { return data_.geometry.segments - data_.geometry.aftSectionSegments(); }
   void splitFirstSegment(double t);
   void mergeFirstSegment();
   void project(double t);
