@@ -15,6 +15,7 @@
 #include <memory>
 #include <string>
 
+#include "tow_sim/core/constants.h"
 #include "tow_sim/core/tow_run.h"
 
 namespace
@@ -38,7 +39,7 @@ std::shared_ptr<ShipHistory> shipPath(Path path, double speed, double duration)
     const double t = i * 0.1;
     ShipPose pose;
     double rate = 0.0;
-    if (path == Path::kTurn && t * speed / radius < M_PI)
+    if (path == Path::kTurn && t * speed / radius < tow_sim::kPi)
     {
       rate = speed / radius;
       pose.heading = rate * t;
@@ -47,8 +48,8 @@ std::shared_ptr<ShipHistory> shipPath(Path path, double speed, double duration)
     }
     else if (path == Path::kTurn)
     {
-      const double after = t - M_PI * radius / speed;
-      pose.heading = M_PI;
+      const double after = t - tow_sim::kPi * radius / speed;
+      pose.heading = tow_sim::kPi;
       pose.x = -speed * after;
       pose.y = 2.0 * radius;
     }
@@ -81,8 +82,8 @@ SimulationConfig config(int segments, bool deep)
 double rk4Step(const SimulationConfig& c, double tension)
 {
   const double d = c.cable.segmentLength();
-  const double m = c.cable.mass_per_length + c.cable.added_mass_coefficient * c.environment.water_density * M_PI *
-                                                 c.cable.diameter * c.cable.diameter / 4.0;
+  const double m = c.cable.mass_per_length + c.cable.added_mass_coefficient * c.environment.water_density *
+                                                 tow_sim::kPi * c.cable.diameter * c.cable.diameter / 4.0;
   const double omega = std::sqrt(12.0 * tension / (m * d * d));
   return std::min(1.0, 2.5 / omega);
 }

@@ -18,6 +18,7 @@
 #include <fstream>
 #include <string>
 
+#include "tow_sim/core/constants.h"
 #include "tow_sim/scenario/towing_chart.h"
 
 #ifndef TOW_SIM_PLOT_SCRIPT
@@ -27,7 +28,6 @@
 namespace
 {
 using namespace tow_sim;
-constexpr double kPi = 3.14159265358979323846;
 
 int usage(const std::string& why)
 {
@@ -93,7 +93,7 @@ Eigen::Vector3d currentFrom(const std::string& text)
   if (colon == std::string::npos)
     throw std::invalid_argument("--current '" + text + "' must be SPEED:DIRECTION_DEG");
   const double speed = parseRange(text.substr(0, colon), "--current speed").at(0);
-  const double direction = parseRange(text.substr(colon + 1), "--current direction").at(0) * kPi / 180.0;
+  const double direction = parseRange(text.substr(colon + 1), "--current direction").at(0) * tow_sim::kPi / 180.0;
   if (!(std::abs(speed) <= 20.0))
     throw std::invalid_argument("--current: " + std::to_string(speed) + " m/s is outside [-20, 20]");
   return speed * Eigen::Vector3d(std::cos(direction), std::sin(direction), 0.0);

@@ -9,6 +9,7 @@
 #include <exception>
 #include <memory>
 
+#include "tow_sim/core/constants.h"
 #include "tow_sim/core/tow_run.h"
 #include "tow_sim/scenario/ship_path.h"
 
@@ -38,8 +39,9 @@ Scenario demoScenario(double duration)
 
 void printLine(const TowSnapshot& s)
 {
-  std::printf("%7.0f %10.2f %10.2f %11.2f %11.3f %11.1f %13.1f %9.2f\n", s.t, s.depth, s.pitch * 180.0 / M_PI,
-              s.layback, s.diversion.offset, s.tension_ship, s.tension_vehicle, s.vehicle.elevator * 180.0 / M_PI);
+  std::printf("%7.0f %10.2f %10.2f %11.2f %11.3f %11.1f %13.1f %9.2f\n", s.t, s.depth, s.pitch * 180.0 / tow_sim::kPi,
+              s.layback, s.diversion.offset, s.tension_ship, s.tension_vehicle,
+              s.vehicle.elevator * 180.0 / tow_sim::kPi);
 }
 }  // namespace
 

@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "tow_sim/core/constants.h"
 #include "tow_sim/core/param_tables.h"
 
 namespace tow_sim
@@ -16,7 +17,6 @@ void requireDistinctFrames(const std::string& world, const std::string& vehicle,
                                 "vehicle_frame: world_frame and vehicle_frame must be non-empty and different");
 }
 
-constexpr double kHalfPi = 1.57079632679489661923;
 constexpr bool kOpen = true, kClosed = false;
 }  // namespace
 

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "tow_sim/core/constants.h"
 #include "tow_sim/core/geometry.h"
 #include "tow_sim/core/params.h"
 
@@ -13,7 +14,6 @@ namespace tow_sim
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
 }
 
 LambCoefficients lambCoefficients(double length, double diameter)

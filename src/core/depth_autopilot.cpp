@@ -5,6 +5,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "tow_sim/core/constants.h"
 #include "tow_sim/core/param_tables.h"
 #include "tow_sim/core/params.h"
 
@@ -12,7 +13,6 @@ namespace tow_sim
 {
 namespace
 {
-constexpr double kHalfPi = 1.57079632679489661923;
 
 const DepthAutopilotParams& validated(const DepthAutopilotParams& p)
 {

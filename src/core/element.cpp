@@ -1,4 +1,5 @@
 #include "tow_sim/core/element.h"
+#include "tow_sim/core/constants.h"
 #include "tow_sim/core/geometry.h"
 
 #include <Eigen/Geometry>
@@ -9,7 +10,6 @@ namespace tow_sim
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
 
 // Below this normal speed [m/s] the direction q of the normal flow is undefined; M_V vanishes there.
 constexpr double kTinySpeed = 1e-12;

@@ -8,14 +8,13 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "tow_sim/core/constants.h"
 #include "tow_sim/core/params.h"
 
 namespace tow_sim
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kHalfPi = 0.5 * kPi;
 
 double wrapAngle(double a)
 {

@@ -1,4 +1,5 @@
 #include "tow_sim/core/param_tables.h"
+#include "tow_sim/core/constants.h"
 
 #include <algorithm>
 
@@ -6,7 +7,6 @@ namespace tow_sim
 {
 namespace
 {
-constexpr double kHalfPi = 1.57079632679489661923;
 constexpr bool kOpen = true;     // (lo, hi]
 constexpr bool kClosed = false;  // [lo, hi]
 }  // namespace

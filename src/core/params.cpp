@@ -1,5 +1,6 @@
 #include "tow_sim/core/params.h"
 
+#include "tow_sim/core/constants.h"
 #include "tow_sim/core/param_tables.h"
 
 #include <algorithm>
@@ -13,7 +14,6 @@ namespace tow_sim
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
 
 std::string formatValue(double value)
 {

@@ -1,5 +1,6 @@
 #include "tow_sim/core/ship_response.h"
 
+#include "tow_sim/core/constants.h"
 #include "tow_sim/core/numeric_csv.h"
 
 #include <Eigen/Geometry>
@@ -11,8 +12,6 @@ namespace tow_sim
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kTwoPi = 2.0 * kPi;
 
 // The generic vessel (README, The ship in waves).
 constexpr double kLength = 60.0, kBeam = 12.0;              // [m]

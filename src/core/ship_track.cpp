@@ -4,11 +4,12 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "tow_sim/core/constants.h"
+
 namespace tow_sim
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
 }  // namespace
 
 ShipTrack::ShipTrack(double max_extrapolation, size_t capacity, double max_speed)
@@ -151,8 +152,8 @@ bool ShipHistory::add(double t, const Eigen::Vector3d& tow_p_W, const Eigen::Vec
     return false;
   ShipPose p = pose;
   // Unwrap: within half a turn of the previous heading (a continuous heading is kept as it is).
-  if (!poses_.empty() && std::abs(p.heading - poses_.back().heading) > M_PI)
-    p.heading = poses_.back().heading + std::remainder(p.heading - poses_.back().heading, 2.0 * M_PI);
+  if (!poses_.empty() && std::abs(p.heading - poses_.back().heading) > kPi)
+    p.heading = poses_.back().heading + std::remainder(p.heading - poses_.back().heading, 2.0 * kPi);
   // The track may have dropped its oldest sample to stay within its capacity: keep the poses alongside.
   while (!times_.empty() && times_.front() < track_.oldestTime())
   {

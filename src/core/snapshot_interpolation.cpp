@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tow_sim/core/constants.h"
 #include "tow_sim/core/tow_run.h"
 
 namespace tow_sim
@@ -16,7 +17,7 @@ T lerp(const T& a, const T& b, double w)
 
 double lerpAngle(double a, double b, double w)  // [rad] the short way round
 {
-  return a + w * std::remainder(b - a, 2.0 * M_PI);
+  return a + w * std::remainder(b - a, 2.0 * kPi);
 }
 
 FinPairLoads lerp(const FinPairLoads& a, const FinPairLoads& b, double w)

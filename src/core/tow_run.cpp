@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "tow_sim/core/constants.h"
 #include "tow_sim/core/equilibrium.h"
 
 namespace tow_sim
@@ -347,8 +348,8 @@ TowSnapshot TowRun::snapshot()
   const VehicleOutputs& o = s.vehicle = vehicleOutputs();
   s.attitude = attitude_.update(o.q_WB * Eigen::Vector3d::UnitX());
   const Eigen::Vector3d x_b = s.attitude * Eigen::Vector3d::UnitX(), y_b = s.attitude * Eigen::Vector3d::UnitY();
-  s.pitch = -std::asin(std::clamp(x_b.z(), -1.0, 1.0));
-  s.yaw = std::atan2(-y_b.x(), y_b.y());
+  s.pitch = pitchOf(x_b);
+  s.yaw = yawOf(y_b);
   s.depth = o.depth;
   const Eigen::Vector3d heading(std::cos(s.ship.heading), std::sin(s.ship.heading), 0.0);
   s.layback = (s.tow_point.p_W - o.p_cg_W).dot(heading);

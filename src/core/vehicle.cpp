@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "tow_sim/core/added_mass.h"
+#include "tow_sim/core/constants.h"
 #include "tow_sim/core/geometry.h"
 #include "tow_sim/core/param_tables.h"
 
@@ -259,8 +260,8 @@ VehicleOutputs Vehicle::outputs(double t, const ElementKinematics& k, const Envi
   o.omega_W = k.omega;
   o.omega_B = R.transpose() * k.omega;
   o.depth = -o.p_cg_W.z();
-  o.pitch = -std::asin(std::clamp(frame.x.z(), -1.0, 1.0));
-  o.yaw = std::atan2(-frame.y.x(), frame.y.y());
+  o.pitch = pitchOf(frame.x);
+  o.yaw = yawOf(frame.y);
   const Loads l = loads(t, k, env, actuators, frame);
   o.rudder = l.rudder;
   o.elevator = l.elevator;

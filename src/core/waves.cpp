@@ -5,13 +5,13 @@
 #include <random>
 #include <stdexcept>
 
+#include "tow_sim/core/constants.h"
 #include "tow_sim/core/param_tables.h"
 
 namespace tow_sim
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
 // Beyond this k z (deep) or k (z + h) - k h (finite depth) a component's motion is below 1e-9 of the surface's.
 constexpr double kNegligibleDecay = -20.7;
 

@@ -9,6 +9,7 @@
 
 #include "tow_sim/CableState.h"
 #include "tow_sim/FinLoads.h"
+#include "tow_sim/core/constants.h"
 #include "tow_sim/core/odometry_check.h"
 #include "tow_sim/ros/conversions.h"
 #include "tow_sim/ros/markers.h"
@@ -225,7 +226,7 @@ void TowSimNode::onOdometry(const nav_msgs::Odometry::ConstPtr& msg)
   ship_pose.speed = v_W.head<2>().norm();               // over ground (a heaving ship's vertical speed left out)
   const Eigen::Matrix3d R = r.q_WS.toRotationMatrix();  // REP-103 roll and pitch: R = Rz Ry Rx
   ship_pose.z = in.p_W.z();
-  ship_pose.pitch = -std::asin(std::clamp(R(2, 0), -1.0, 1.0));
+  ship_pose.pitch = pitchOf(R.col(0));
   ship_pose.roll = std::atan2(R(2, 1), R(2, 2));
   ship_->add(in.t, r.tow_p_W, r.tow_v_W, ship_pose);
   last_odom_wall_ = ros::WallTime::now().toSec();

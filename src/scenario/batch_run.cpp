@@ -6,6 +6,7 @@
 #include <memory>
 #include <sstream>
 
+#include "tow_sim/core/constants.h"
 #include "tow_sim/core/saved_state.h"
 #include "tow_sim/scenario/ship_path.h"
 #include "tow_sim/scenario/towing_chart.h"
@@ -84,7 +85,7 @@ long restoreInitialState(const Scenario& sc, const ShipHistory& ship, TowRun& ru
   const ShipEndState tow = ship.towPoint(state.sim.t);
   const double heading = ship.pose(state.sim.t).heading;
   const double moved = (state.tow_point.p_W - tow.p_W).norm();
-  const double turned = std::abs(std::remainder(state.heading - heading, 2.0 * M_PI));
+  const double turned = std::abs(std::remainder(state.heading - heading, 2.0 * kPi));
   if (moved > 1e-9 * std::max(1.0, tow.p_W.norm()) || turned > 1e-12)
   {
     state = relocate(state, state.sim.t, tow, heading);

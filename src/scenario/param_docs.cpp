@@ -11,6 +11,7 @@
 
 #include "tow_sim/config/config.h"
 #include "tow_sim/config/node_params.h"
+#include "tow_sim/core/constants.h"
 #include "tow_sim/core/param_tables.h"
 #include "tow_sim/scenario/scenario_tables.h"
 
@@ -18,7 +19,6 @@ namespace tow_sim
 {
 namespace
 {
-constexpr double kHalfPi = 1.57079632679489661923;
 
 // Numbers as the documentation writes them: 1e5 for large powers of ten, π/2, plain otherwise.
 std::string number(double x, bool markdown)

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "tow_sim/config/param_yaml.h"
+#include "tow_sim/core/constants.h"
 #include "tow_sim/core/param_tables.h"
 #include "tow_sim/scenario/scenario_tables.h"
 
@@ -16,7 +17,6 @@ namespace
 using detail::fail;
 using detail::ParamReader;
 using detail::Section;
-constexpr double kHalfPi = 1.57079632679489661923;
 constexpr bool kOpen = true, kClosed = false;
 }  // namespace
 

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tow_sim/core/constants.h"
+
 namespace tow_sim
 {
 namespace
@@ -93,7 +95,7 @@ ScriptedShip::Targets ScriptedShip::targets()
     {
       const Eigen::Vector2d& w = m.points[static_cast<size_t>(leg_)];
       const double bearing = std::atan2(w.y() - y_, w.x() - x_);
-      course_ = heading_ + std::remainder(bearing - heading_, 2.0 * M_PI);
+      course_ = heading_ + std::remainder(bearing - heading_, 2.0 * kPi);
       const Targets t{ m.speed, holdCourse(turn_rate) };
       if (std::hypot(w.x() - x_, w.y() - y_) < m.acceptance && ++leg_ >= static_cast<int>(m.points.size()))
       {

@@ -6,6 +6,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "tow_sim/core/constants.h"
 #include "tow_sim/core/numeric_csv.h"
 #include "tow_sim/core/ship_response.h"
 #include "tow_sim/scenario/scripted_ship.h"
@@ -14,7 +15,6 @@ namespace tow_sim
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
 
 // The weights of the derivative at t[i] of the polynomial through the samples first .. last (Lagrange).
 std::vector<double> derivativeWeights(const std::vector<ShipMotionSample>& m, size_t i, size_t first, size_t last)

@@ -7,12 +7,12 @@
 
 #include "tow_sim/config/node_params.h"
 #include "tow_sim/config/param_yaml.h"
+#include "tow_sim/core/constants.h"
 
 namespace tow_sim
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
 
 Eigen::Vector3d readVector(const YAML::Node& node, const std::string& name, double limit, const char* unit)
 {

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "tow_sim/core/constants.h"
 #include "tow_sim/core/numeric_csv.h"
 #include "tow_sim/core/tow_run.h"
 
@@ -14,7 +15,6 @@ namespace tow_sim
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
 }
 
 ChartPoint chartPoint(const SimulationConfig& config, double speed, double cable_out, const Eigen::Vector3d& current_W)

@@ -4,6 +4,7 @@
 #include <Eigen/Core>
 #include <memory>
 
+#include "tow_sim/core/constants.h"
 #include "tow_sim/core/simulator.h"
 
 namespace tow_sim
@@ -27,7 +28,7 @@ inline EndElementParams endLikeSegment(const CableParams& cable)
 {
   EndElementParams e;
   const double d = cable.segmentLength();
-  const double area = 0.25 * 3.14159265358979323846 * cable.diameter * cable.diameter;
+  const double area = 0.25 * kPi * cable.diameter * cable.diameter;
   e.length = d;
   e.mass = cable.mass_per_length * d;
   e.displaced_volume = area * d;

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "tow_sim/core/constants.h"
 #include "tow_sim/scenario/batch_run.h"
 #include "tow_sim/scenario/scenario.h"
 #include "tow_sim/scenario/ship_path.h"
@@ -23,7 +24,6 @@ namespace tow_sim
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
 
 std::string run(const std::string& command, int* status)
 {

@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "tow_sim/core/constants.h"
 #include "tow_sim/core/tow_run.h"
 
 namespace tow_sim
@@ -224,7 +225,7 @@ TEST(CableParting, ASimpleBodyPartsAtTheBailAndSinksAtItsTerminalVelocity)
   // The whole cable stays on the ship, hanging straight down (by symmetry) and pushing up on the tow point
   // with its net buoyancy (b - w) L: the force on the ship, -T_1, is that, upward (the rigid chain in
   // compression).
-  const double area = 0.25 * 3.14159265358979323846 * c.cable.diameter * c.cable.diameter;
+  const double area = 0.25 * kPi * c.cable.diameter * c.cable.diameter;
   const double lift = (c.environment.water_density * area - c.cable.mass_per_length) * c.environment.gravity * 50.0;
   ASSERT_EQ(s.ship_side.cols(), c.cable.segments + 1);
   std::printf("the cable left on the ship: T_1 (%.6f, %.6f, %.6f) N, closed form (0, 0, %.6f) N\n", shipPull(s).x(),

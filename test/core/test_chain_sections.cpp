@@ -21,13 +21,13 @@
 #include "chain_fixtures.h"
 #include "tow_sim/core/chain_jacobian.h"
 #include "tow_sim/core/chain_solver.h"
+#include "tow_sim/core/constants.h"
 
 namespace tow_sim
 {
 namespace
 {
 constexpr double kG = 9.81;
-constexpr double kPi = 3.14159265358979323846;
 
 // Three sections, forward to aft: 40 m in 4, 30 m in 6, 20 m in 2 segments, each of its own weight,
 // diameter and drag.

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "tow_sim/core/constants.h"
 #include "tow_sim/core/depth_autopilot.h"
 
 namespace
@@ -354,7 +355,7 @@ TEST(PastTrack, OffsetFollowsATurnedTrack)
   PastTrack track(1.0, 5000.0);
   for (double x = 0.0; x <= 500.0; x += 0.5)
     track.add(Eigen::Vector2d(x, 0.0));
-  for (double a = 0.0; a <= M_PI; a += 0.002)
+  for (double a = 0.0; a <= tow_sim::kPi; a += 0.002)
     track.add(Eigen::Vector2d(500.0 + 100.0 * std::sin(a), 100.0 - 100.0 * std::cos(a)));
   for (double x = 500.0; x >= 0.0; x -= 0.5)
     track.add(Eigen::Vector2d(x, 200.0));

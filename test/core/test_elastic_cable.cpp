@@ -18,6 +18,7 @@
 
 #include "core/chain_fixtures.h"
 #include "tow_sim/config/config.h"
+#include "tow_sim/core/constants.h"
 #include "tow_sim/core/seabed.h"
 #include "tow_sim/scenario/batch_run.h"
 #include "tow_sim/scenario/scenario.h"
@@ -26,7 +27,6 @@ namespace tow_sim
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
 
 Environment vacuum()
 {

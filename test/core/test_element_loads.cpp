@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tow_sim/core/constants.h"
 #include "tow_sim/core/element.h"
 #include "tow_sim/core/fins.h"
 #include "tow_sim/core/params.h"
@@ -22,7 +23,6 @@ namespace
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180.0;
 constexpr double kRel = 1e-12;  // the hand values follow the same formulas: only rounding differs
 

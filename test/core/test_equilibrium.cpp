@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "core/chain_fixtures.h"
+#include "tow_sim/core/constants.h"
 #include "tow_sim/core/equilibrium.h"
 #include "tow_sim/core/vehicle.h"
 
@@ -14,7 +15,6 @@ namespace tow_sim
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
 
 std::shared_ptr<ChainModel> vehicleModel(double length, int segments, const Eigen::Vector3d& current,
                                          std::shared_ptr<Vehicle>* vehicle_out = nullptr)

@@ -13,12 +13,12 @@
 
 #include "chain_fixtures.h"
 #include "tow_sim/core/chain_solver.h"
+#include "tow_sim/core/constants.h"
 
 namespace tow_sim
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
 
 struct FreeChain
 {

@@ -10,6 +10,7 @@
 #include <random>
 #include <string>
 
+#include "tow_sim/core/constants.h"
 #include "tow_sim/core/equilibrium.h"
 #include "tow_sim/core/vehicle.h"
 #include "tow_sim/scenario/scenario.h"
@@ -19,7 +20,6 @@ namespace tow_sim
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
 
 struct Tow
 {

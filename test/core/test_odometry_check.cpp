@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "tow_sim/core/constants.h"
 #include "tow_sim/core/odometry_check.h"
 
 namespace tow_sim
@@ -26,7 +27,7 @@ TEST(OdometryCheck, GivesTheTowPointOfAGoodMessage)
   OdometryInput in = good(1.0);
   // Heading north (90 deg), turning at 0.01 rad/s: the tow point 20 m astern lies 20 m south and
   // moves with the ship plus w x r.
-  in.q_wxyz = Eigen::Vector4d(std::cos(M_PI / 4), 0, 0, std::sin(M_PI / 4));
+  in.q_wxyz = Eigen::Vector4d(std::cos(kPi / 4), 0, 0, std::sin(kPi / 4));
   in.w_S = Eigen::Vector3d(0, 0, 0.01);
   const OdometryResult r = checkOdometry(in, OdometryLimits(), track, 1.0);
   ASSERT_TRUE(r.accepted) << r.reason;

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "temp_file.h"
+#include "tow_sim/core/constants.h"
 #include "tow_sim/core/saved_state.h"
 #include "tow_sim/scenario/batch_run.h"
 #include "tow_sim/scenario/scenario.h"
@@ -362,7 +363,7 @@ TEST(SavedState, ARelocatedStateTowsOnAsTheOriginalTurned)
   EXPECT_LT((R * rel_a - rel_b).cwiseAbs().maxCoeff(), 1e-6 * rel_a.cwiseAbs().maxCoeff());
   EXPECT_NEAR(a.tension_ship, b.tension_ship, 1e-6 * a.tension_ship);
   EXPECT_NEAR(a.depth, b.depth, 1e-6);
-  EXPECT_NEAR(std::remainder(b.yaw - a.yaw - heading, 2.0 * M_PI), 0.0, 1e-6);
+  EXPECT_NEAR(std::remainder(b.yaw - a.yaw - heading, 2.0 * kPi), 0.0, 1e-6);
   // The comparison is of a moving state: the depth changed by more than 0.1 m (10^5 times the agreement asked).
   EXPECT_GT(std::abs(a.depth - depth_at_save), 0.1);
 }

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "tow_sim/core/constants.h"
 #include "tow_sim/scenario/scripted_ship.h"
 #include "tow_sim/scenario/ship_path.h"
 
@@ -13,7 +14,6 @@ namespace tow_sim
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180.0;
 
 Manoeuvre straight(double duration)

@@ -9,6 +9,7 @@
 #include <cstdio>
 
 #include "core/chain_fixtures.h"
+#include "tow_sim/core/constants.h"
 #include "tow_sim/core/equilibrium.h"
 #include "tow_sim/core/seabed.h"
 #include "tow_sim/core/vehicle.h"
@@ -143,7 +144,7 @@ TEST(Seabed, APartedCablesFreeEndLiesOnTheBottom)
   sim.reset(0.0, straightChain(*model, tow_point, Eigen::Vector3d(-1.0, 0.0, 0.0), Eigen::Vector3d::Zero()));
   sim.part(0);
   sim.advanceTo(30.0);
-  const double area = 0.25 * M_PI * cable.diameter * cable.diameter;
+  const double area = 0.25 * kPi * cable.diameter * cable.diameter;
   const double w = (cable.mass_per_length - env.water_density * area) * env.gravity;  // [N/m]
   const double sunk = w / flat.stiffness;
   const Eigen::Matrix3Xd x = sim.jointPositions();  // the free end first

@@ -9,6 +9,7 @@
 #include <cstdio>
 
 #include "core/temp_file.h"
+#include "tow_sim/core/constants.h"
 #include "tow_sim/core/odometry_check.h"
 #include "tow_sim/core/ship_response.h"
 #include "tow_sim/scenario/scenario.h"
@@ -18,7 +19,6 @@ namespace tow_sim
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kG = 9.81;
 
 // Elementary rotations, written out.

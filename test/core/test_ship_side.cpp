@@ -11,11 +11,12 @@
 
 #include "core/chain_fixtures.h"
 
+#include "tow_sim/core/constants.h"
+
 namespace tow_sim
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
 
 TEST(ShipSide, HangingInVacuumItStaysAndTheShipCarriesItsWeight)
 {

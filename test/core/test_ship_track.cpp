@@ -7,6 +7,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "tow_sim/core/constants.h"
 #include "tow_sim/core/ship_track.h"
 
 namespace tow_sim
@@ -159,7 +160,7 @@ TEST(ShipHistory, PoseWrapsThroughPiAndExtrapolatesLikeTheTrack)
     p.speed = 2.0;
     return p;
   };
-  const double pi = 3.14159265358979323846;
+  const double pi = kPi;
   ship.add(0.0, Eigen::Vector3d(0.0, 0.0, 0.0), Eigen::Vector3d(2.0, 0.0, 0.0), pose(0.0, pi - 0.1));
   ship.add(1.0, Eigen::Vector3d(2.0, 0.0, 0.0), Eigen::Vector3d(2.0, 0.0, 0.0), pose(2.0, -pi + 0.1));
   EXPECT_NEAR(std::remainder(ship.pose(0.5).heading - pi, 2.0 * pi), 0.0, 1e-12);  // not 0

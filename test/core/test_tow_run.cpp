@@ -7,6 +7,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "tow_sim/core/constants.h"
 #include "tow_sim/core/tow_run.h"
 
 namespace tow_sim
@@ -156,9 +157,9 @@ TEST(TowRun, SnapshotsInterpolateBetweenTwoTimes)
   EXPECT_EQ(interpolate(a, b, 11.0).t, b.t);
   // Yaw the short way round across +-pi.
   TowSnapshot left = a, right = b;
-  left.yaw = M_PI - 0.1;
-  right.yaw = -M_PI + 0.1;
-  EXPECT_NEAR(std::abs(interpolate(left, right, 10.25).yaw), M_PI, 1e-12);
+  left.yaw = kPi - 0.1;
+  right.yaw = -kPi + 0.1;
+  EXPECT_NEAR(std::abs(interpolate(left, right, 10.25).yaw), kPi, 1e-12);
   // A change of layout (the winch re-meshing): the nearer snapshot whole.
   right.joints.conservativeResize(3, right.joints.cols() + 1);
   EXPECT_EQ(interpolate(left, right, 10.1).joints, left.joints);

@@ -10,6 +10,7 @@
 #include <memory>
 #include <sstream>
 
+#include "tow_sim/core/constants.h"
 #include "tow_sim/core/tow_run.h"
 #include "tow_sim/scenario/towing_chart.h"
 
@@ -17,7 +18,6 @@ namespace tow_sim
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
 
 // The default configuration with 10 m segments, towed from a straight line 30 degrees down for 1500 s at a
 // constant speed: its settled state.

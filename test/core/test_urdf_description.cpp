@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "tow_sim/core/constants.h"
 #include "tow_sim/scenario/towfish_urdf.h"
 
 namespace
@@ -22,7 +23,7 @@ TEST(UrdfDescription, DefaultsAreTheNodesFrameAndThreeSensorsOnTheHull)
   ASSERT_EQ(d.sensors.size(), 3u);
   EXPECT_EQ(d.sensors[0].name, "sidescan_port");
   EXPECT_EQ(d.sensors[0].xyz.y(), 0.15);  // on the hull's port side
-  EXPECT_NEAR(d.sensors[0].rpy.z(), M_PI / 2, 1e-12);
+  EXPECT_NEAR(d.sensors[0].rpy.z(), tow_sim::kPi / 2, 1e-12);
   EXPECT_EQ(d.sensors[1].xyz.y(), -0.15);
   EXPECT_EQ(d.sensors[2].name, "altimeter");
   EXPECT_EQ(d.sensors[2].xyz.z(), -0.15);

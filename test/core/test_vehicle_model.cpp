@@ -10,13 +10,13 @@
 #include "core/chain_fixtures.h"
 #include "tow_sim/core/added_mass.h"
 #include "tow_sim/core/chain_solver.h"
+#include "tow_sim/core/constants.h"
 #include "tow_sim/core/vehicle.h"
 
 namespace tow_sim
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180.0;
 
 TEST(Lamb, ProlateSpheroidCoefficientsMatchLambsTable)

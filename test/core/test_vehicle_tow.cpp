@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "core/chain_fixtures.h"
+#include "tow_sim/core/constants.h"
 #include "tow_sim/core/equilibrium.h"
 #include "tow_sim/core/vehicle.h"
 
@@ -15,7 +16,6 @@ namespace tow_sim
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180.0;
 
 struct Tow

@@ -15,6 +15,7 @@
 
 #include "core/chain_fixtures.h"
 #include "tow_sim/config/config.h"
+#include "tow_sim/core/constants.h"
 #include "tow_sim/core/vehicle.h"
 #include "tow_sim/core/waves.h"
 #include "tow_sim/scenario/batch_run.h"
@@ -24,7 +25,6 @@ namespace tow_sim
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kG = 9.81;
 
 WaveParams regular(double height, double period, double direction, double phase, double depth = 0.0)

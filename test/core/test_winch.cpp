@@ -8,6 +8,7 @@
 #include <cstdio>
 
 #include "core/chain_fixtures.h"
+#include "tow_sim/core/constants.h"
 #include "tow_sim/core/equilibrium.h"
 #include "tow_sim/core/simulator.h"
 #include "tow_sim/core/vehicle.h"
@@ -333,9 +334,9 @@ TEST(Winch, PaidOutCableDragsAtItsOwnSpeedThroughTheWater)
   sim.advanceTo(80.0);
   ASSERT_NEAR(sim.payoutRate(), 1.0, 1e-6);
   const double L0 = sim.geometry().first_length;
-  const double area = M_PI * cable.diameter * cable.diameter / 4.0;
+  const double area = kPi * cable.diameter * cable.diameter / 4.0;
   const double net_weight = (cable.mass_per_length - env.water_density * area) * env.gravity * L0;
-  const double c1 = 0.5 * env.water_density * cable.tangential_drag_coefficient * M_PI * cable.diameter;
+  const double c1 = 0.5 * env.water_density * cable.tangential_drag_coefficient * kPi * cable.diameter;
   const double drop = sim.tensions().col(0).z() - sim.tensions().col(1).z();
   std::printf(
       "first segment %.3f m paid out at 1 m/s: tension drop %.4f N = weight %.4f N - drag %.4f N (at the "

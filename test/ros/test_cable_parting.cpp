@@ -17,6 +17,7 @@
 #include "tow_sim/CableParting.h"
 #include "tow_sim/CableState.h"
 #include "tow_sim/config/node_params.h"
+#include "tow_sim/core/constants.h"
 #include "tow_sim/core/tow_run.h"
 #include "tow_sim/ros/conversions.h"
 #include "tow_sim/ros/markers.h"
@@ -159,7 +160,7 @@ TEST(CableParting, AfterAPartingAtTheBailTheShipFeelsTheCableLeftOnIt)
   const tow_sim::TowSnapshot s = run.snapshot();
   ASSERT_TRUE(s.parting);
   ASSERT_EQ(s.parting->joint, 11);
-  const double area = 0.25 * M_PI * c.cable.diameter * c.cable.diameter;
+  const double area = 0.25 * tow_sim::kPi * c.cable.diameter * c.cable.diameter;
   const double lift = (c.environment.water_density * area - c.cable.mass_per_length) * c.environment.gravity * 50.0;
 
   std_msgs::Header header;

@@ -26,6 +26,7 @@
 #include "tow_sim/CableState.h"
 #include "tow_sim/FinCommand.h"
 #include "tow_sim/PlanCableOut.h"
+#include "tow_sim/core/constants.h"
 
 namespace
 {
@@ -241,7 +242,7 @@ TEST(DepthAutopilotNode, ReachesAStepSetpointAndHoldsItThroughA180DegreeTurn)
     max_turn_elevator = std::max(max_turn_elevator, std::abs(loop->fins().elevator));
   };
   loop->yaw_rate_target_ = kSpeed / kTurnRadius;
-  while (loop->heading_ < M_PI - 5.0 * loop->yaw_rate_ && loop->time_ < turn_start + 1000.0)
+  while (loop->heading_ < tow_sim::kPi - 5.0 * loop->yaw_rate_ && loop->time_ < turn_start + 1000.0)
     loop->run(0.1, watch);
   loop->yaw_rate_target_ = 0.0;
   const double turn_time = loop->time_ - turn_start;
@@ -249,8 +250,8 @@ TEST(DepthAutopilotNode, ReachesAStepSetpointAndHoldsItThroughA180DegreeTurn)
   std::printf(
       "turn: %.0f s to %.1f deg; then 250 s straight. Max depth error %.3f m (limit %.1f m); "
       "max |elevator| %.3f rad, max |rudder| %.3f rad\n",
-      turn_time, loop->heading_ * 180.0 / M_PI, max_error, kTolerance, max_turn_elevator, max_rudder);
-  EXPECT_GT(loop->heading_, M_PI - 0.05);
+      turn_time, loop->heading_ * 180.0 / tow_sim::kPi, max_error, kTolerance, max_turn_elevator, max_rudder);
+  EXPECT_GT(loop->heading_, tow_sim::kPi - 0.05);
   EXPECT_LT(max_error, kTolerance);
   EXPECT_GT(max_rudder, 0.01);  // track keeping was steering
   std::printf("%.0f s simulated in %.0f s of wall time; %d of the 0.1 s steps waited more than 5 s for a node\n",

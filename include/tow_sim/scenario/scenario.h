@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "tow_sim/config/config.h"
+#include "tow_sim/core/constants.h"
 #include "tow_sim/core/depth_autopilot.h"
 #include "tow_sim/core/ship_response.h"
 #include "tow_sim/core/tow_run.h"
@@ -32,7 +33,7 @@ struct Manoeuvre
   double duration = 60.0;
   double to_speed = 1.0;
   double radius = 200.0;
-  double angle = 3.14159265358979323846;
+  double angle = kPi;
   int direction = 1;
   int legs = 4;
   double acceptance = 30.0;
