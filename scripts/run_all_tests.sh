@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# `make test`: every stage runs even when an earlier one failed (the size and format checks, the test build,
+# `make test`: every stage runs even when an earlier one failed (the size, layer and format checks, the test build,
 # run_tests, the sanitizers, fuzzing), its exit status is recorded, and
 # scripts/test_summary.py gives the verdict over all of them (the expected results of every suite
 # included, so a test that never ran is a failure). Called by the Makefile with WS, REPO, JOBS,
@@ -32,6 +32,7 @@ run_tests() {
 
 # The style guide's limits and the committed format, on the sources (not the build).
 stage "size limits (scripts/check_sizes.py)" /usr/bin/python3 "$REPO/scripts/check_sizes.py" "$REPO"
+stage "layers (scripts/check_layers.py)" /usr/bin/python3 "$REPO/scripts/check_layers.py" "$REPO"
 stage "clang-format (.clang-format)" bash -c "cd '$REPO' && clang-format --dry-run -Werror \$(find src include tools test bench fuzz \( -name '*.cpp' -o -name '*.h' \))"
 
 cd "$WS" && rm -rf build/test_results

@@ -6,6 +6,8 @@
 
 #include "tow_sim/config/param_yaml.h"
 #include "tow_sim/core/param_tables.h"
+#include "tow_sim/core/seabed.h"
+#include "tow_sim/core/vehicle.h"
 
 namespace tow_sim
 {

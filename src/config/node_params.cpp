@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "tow_sim/core/constants.h"
+#include "tow_sim/core/depth_autopilot.h"
 #include "tow_sim/core/param_tables.h"
 
 namespace tow_sim
@@ -17,7 +18,6 @@ void requireDistinctFrames(const std::string& world, const std::string& vehicle,
                                 "vehicle_frame: world_frame and vehicle_frame must be non-empty and different");
 }
 
-constexpr bool kOpen = true, kClosed = false;
 }  // namespace
 
 const ParamTable<NodeParams>& nodeParams()

@@ -289,4 +289,44 @@ void DepthAutopilot::restore(const DepthAutopilotState& s)
   track_.restore(s.track);
 }
 
+const ParamTable<DepthAutopilotParams>& autopilotParams()
+{
+  using A = DepthAutopilotParams;
+  static const ParamTable<A> table =
+      ParamTable<A>()
+          .number("kp", &A::kp, "rad/m", 0.0, 10.0, kClosed, "elevator per metre of depth error")
+          .number("ki", &A::ki, "rad/(m s)", 0.0, 10.0, kClosed, "elevator per metre-second of integrated error")
+          .number("kd", &A::kd, "rad/(m/s)", 0.0, 100.0, kClosed, "elevator per m/s of vertical velocity (world, up)")
+          .number("max_elevator", &A::max_elevator, "rad", 0.0, kHalfPi, kOpen,
+                  "elevator limit (the default vehicle's max_deflection)")
+          .boolean("track_keeping", &A::track_keeping, "steer on the ship's track; false: rudder 0")
+          .number("rudder_kp", &A::rudder_kp, "rad/m", 0.0, 10.0, kClosed, "rudder per metre of lateral offset")
+          .number("rudder_kd", &A::rudder_kd, "rad/(m/s)", 0.0, 100.0, kClosed, "rudder per m/s of offset rate")
+          .number("max_rudder", &A::max_rudder, "rad", 0.0, kHalfPi, kOpen, "rudder limit")
+          .number("track_spacing", &A::track_spacing, "m", 0.01, 1000.0, kClosed,
+                  "a ship position is stored each time the ship has moved this far")
+          .bounded(
+              "track_length", &A::track_length, "m",
+              [](const A& a) { return std::make_pair(std::max(10.0, 2.0 * a.track_spacing), 1e6); },
+              "at least 10 m and two track_spacing", "past track kept (older points dropped)")
+          .number("thrust", &A::thrust, "N", -1e6, 1e6, kClosed, "constant thrust command")
+          .number("odom_timeout", &A::odom_timeout, "s", 0.0, 3600.0, kOpen,
+                  "no new vehicle odometry for this long (since it arrived): fins centred")
+          .number("max_depth", &A::max_depth, "m", 0.0, 1e5, kOpen, "setpoints above it are rejected")
+          .choice("actuator", &A::actuator,
+                  { { "elevator", A::Actuator::kElevator },
+                    { "winch", A::Actuator::kWinch },
+                    { "both", A::Actuator::kBoth } },
+                  "what holds the depth: the elevator (PID above), the winch (payout rate; needs winch.enabled), "
+                  "or both")
+          .number("winch_kp", &A::winch_kp, "m/m", 0.0, 1000.0, kClosed,
+                  "winch: cable out aimed at per metre of depth error, on top of the planner's steady cable out")
+          .number("winch_ki", &A::winch_ki, "m/(m s)", 0.0, 100.0, kClosed,
+                  "winch: cable out per metre-second of integrated depth error")
+          .number("winch_time_constant", &A::winch_time_constant, "s", 0.0, 1000.0, kOpen,
+                  "winch: payout rate = (cable out aimed at − cable out) / this")
+          .number("max_payout_rate", &A::max_payout_rate, "m/s", 0.0, 100.0, kOpen, "winch: payout command limit");
+  return table;
+}
+
 }  // namespace tow_sim

@@ -142,4 +142,23 @@ FinPairLoads finPairLoads(const FinPairParams& fin, FinPlane plane, double angle
   return out;
 }
 
+const ParamTable<FinPairParams>& finParams()
+{
+  using F = FinPairParams;
+  static const ParamTable<F> table =
+      ParamTable<F>()
+          .number("lift_constant", &F::lift_constant, "N s^2/m^2", 0.0, 1e7, kClosed,
+                  "C₃ (rudder), C₅ (elevator): lift = C F_L(angle of attack) ‖v_p‖²")
+          .number("drag_constant", &F::drag_constant, "N s^2/m^2", 0.0, 1e7, kClosed,
+                  "C₄, C₆: drag = C F_D(angle of attack) ‖v_p‖²")
+          .number("max_deflection", &F::max_deflection, "rad", 0.0, kHalfPi, kOpen, "commands saturate at ±this")
+          .number("max_rate", &F::max_rate, "rad/s", 0.0, 100.0, kOpen, "servo slew rate")
+          .number("center_of_pressure_offset", &F::center_of_pressure_offset, "m", -10.0, 10.0, kClosed,
+                  "chord-wise, aft of the hinge, for the hinge moment")
+          .custom("lift_table", "rad → -", "stalls at 18°", "angles 0 … π/2 increasing; 0 at 0",
+                  "F_L: {angles: [...], values: [...]}, linear between points, odd; reversed flow past π/2")
+          .custom("drag_table", "rad → -", "stalls at 18°", "angles 0 … π/2 increasing", "F_D, likewise, even");
+  return table;
+}
+
 }  // namespace tow_sim

@@ -1,6 +1,6 @@
 #include "tow_sim/core/implicit_stepper.h"
 
-#include "tow_sim/core/simulator.h"
+#include "tow_sim/core/chain_state.h"
 
 namespace tow_sim
 {

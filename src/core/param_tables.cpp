@@ -1,16 +1,11 @@
 #include "tow_sim/core/param_tables.h"
-#include "tow_sim/core/constants.h"
 
 #include <algorithm>
 
+#include "tow_sim/core/constants.h"
+
 namespace tow_sim
 {
-namespace
-{
-constexpr bool kOpen = true;     // (lo, hi]
-constexpr bool kClosed = false;  // [lo, hi]
-}  // namespace
-
 const ParamTable<CableParams>& cableParams()
 {
   using C = CableParams;
@@ -157,107 +152,6 @@ const ParamTable<WinchParams>& winchParams()
   return table;
 }
 
-const ParamTable<SeabedParams>& seabedParams()
-{
-  using B = SeabedParams;
-  static const ParamTable<B> table =
-      ParamTable<B>()
-          .choice("type", &B::type,
-                  { { "none", SeabedParams::Type::kNone },
-                    { "flat", SeabedParams::Type::kFlat },
-                    { "grid", SeabedParams::Type::kGrid } },
-                  "no bottom, flat at depth, or a bathymetry grid")
-          .number("depth", &B::depth, "m", 0.0, 12000.0, kOpen, "flat bottom")
-          .text("grid_file", &B::grid_file, "a readable file",
-                "YAML {origin: [x, y], spacing: [dx, dy], depth: [[row at y0], …]} [m], depths ≥ 0, at least 2 × 2; "
-                "relative to the configuration's folder (offline), else absolute")
-          .number("stiffness", &B::stiffness, "N/m per m", 0.0, 1e8, kOpen,
-                  "cable: normal force per metre of penetration, per metre of cable")
-          .number("damping", &B::damping, "N s/m per m", 0.0, 1e8, kClosed, "cable: on the rate of penetration")
-          .number("vehicle_stiffness", &B::vehicle_stiffness, "N/m", 0.0, 1e9, kOpen,
-                  "at each of the vehicle's nose and tail points")
-          .number("vehicle_damping", &B::vehicle_damping, "N s/m", 0.0, 1e9, kClosed, "at each of them")
-          .number("friction", &B::friction, "-", 0.0, 5.0, kClosed, "Coulomb coefficient: sliding ≤ friction × normal")
-          .number("friction_speed", &B::friction_speed, "m/s", 0.0, 10.0, kOpen,
-                  "the friction force builds up over this sliding speed");
-  return table;
-}
-
-const ParamTable<FinPairParams>& finParams()
-{
-  using F = FinPairParams;
-  static const ParamTable<F> table =
-      ParamTable<F>()
-          .number("lift_constant", &F::lift_constant, "N s^2/m^2", 0.0, 1e7, kClosed,
-                  "C₃ (rudder), C₅ (elevator): lift = C F_L(angle of attack) ‖v_p‖²")
-          .number("drag_constant", &F::drag_constant, "N s^2/m^2", 0.0, 1e7, kClosed,
-                  "C₄, C₆: drag = C F_D(angle of attack) ‖v_p‖²")
-          .number("max_deflection", &F::max_deflection, "rad", 0.0, kHalfPi, kOpen, "commands saturate at ±this")
-          .number("max_rate", &F::max_rate, "rad/s", 0.0, 100.0, kOpen, "servo slew rate")
-          .number("center_of_pressure_offset", &F::center_of_pressure_offset, "m", -10.0, 10.0, kClosed,
-                  "chord-wise, aft of the hinge, for the hinge moment")
-          .custom("lift_table", "rad → -", "stalls at 18°", "angles 0 … π/2 increasing; 0 at 0",
-                  "F_L: {angles: [...], values: [...]}, linear between points, odd; reversed flow past π/2")
-          .custom("drag_table", "rad → -", "stalls at 18°", "angles 0 … π/2 increasing", "F_D, likewise, even");
-  return table;
-}
-
-const ParamTable<VehicleParams>& vehicleParams()
-{
-  using V = VehicleParams;
-  const auto along = [](const V& v) { return std::make_pair(-v.nose_from_bail, v.tail_from_bail); };
-  const char* along_text = "from -nose_from_bail to tail_from_bail";
-  // Inertia entries: a product of inertia sets both of its (symmetric) places.
-  auto get = [](int i, int j) { return [i, j](const V& v) { return v.inertia_B(i, j); }; };
-  auto set = [](int i, int j)
-  {
-    return [i, j](V& v, double value)
-    {
-      v.inertia_B(i, j) = value;
-      v.inertia_B(j, i) = value;
-    };
-  };
-  static const ParamTable<V> table =
-      ParamTable<V>()
-          .number("tail_from_bail", &V::tail_from_bail, "m", 0.0, 100.0, kOpen,
-                  "d_{ν+1}: the tail point, which fixes the axis")
-          .bounded("cg_from_bail", &V::cg_from_bail, "m", along, along_text, "d_{ν+2}: centre of gravity")
-          .bounded("horizontal_fin_from_bail", &V::horizontal_fin_from_bail, "m", along, along_text,
-                   "d_{ν+3}: elevator axis")
-          .bounded("vertical_fin_from_bail", &V::vertical_fin_from_bail, "m", along, along_text, "d_{ν+4}: rudder axis")
-          .number("nose_from_bail", &V::nose_from_bail, "m", 0.0, 100.0, kClosed, "d_{ν+5}, measured forward")
-          .bounded("cb_from_bail", &V::cb_from_bail, "m", along, along_text, "d_{ν+6}: centre of buoyancy")
-          .number("mass", &V::mass, "kg", 0.0, 1e6, kOpen, "in air")
-          .number("displaced_volume", &V::displaced_volume, "m^3", 0.0, 1e3, kClosed, "buoyancy ρgV at the CB")
-          .numberAt("inertia.xx", get(0, 0), set(0, 0), "kg m^2", 0.0, 1e9, kOpen,
-                    "roll inertia about the CG, body axes (FLU)")
-          .numberAt("inertia.yy", get(1, 1), set(1, 1), "kg m^2", 0.0, 1e9, kOpen,
-                    "pitch inertia (the matrix: positive definite)")
-          .numberAt("inertia.zz", get(2, 2), set(2, 2), "kg m^2", 0.0, 1e9, kOpen, "yaw inertia")
-          .numberAt("inertia.xy", get(0, 1), set(0, 1), "kg m^2", -1e9, 1e9, kClosed,
-                    "product of inertia (the matrix symmetric)")
-          .numberAt("inertia.xz", get(0, 2), set(0, 2), "kg m^2", -1e9, 1e9, kClosed, "product of inertia")
-          .numberAt("inertia.yz", get(1, 2), set(1, 2), "kg m^2", -1e9, 1e9, kClosed, "product of inertia")
-          .number("c1", &V::c1, "N s^2/m^3", 0.0, 1e6, kClosed, "tangential velocity-force constant (bail to tail)")
-          .number("c2", &V::c2, "N s^2/m^3", 0.0, 1e6, kClosed, "normal one, with its rotation-drag moment")
-          .choice("added_mass.approach", &V::added_mass_approach,
-                  { { "A", AddedMassApproach::kA }, { "B", AddedMassApproach::kB } },
-                  "A: −e(a − (a·s)s) at the bail–tail midpoint (report); B: Kirchhoff 6×6")
-          .number("added_mass.e", &V::added_mass_a, "kg", 0.0, 1e6, kClosed, "e_{ν+1} of Approach A")
-          .custom("added_mass.matrix", "kg, kg m, kg m^2", "zeros", "symmetric positive semi-definite",
-                  "Approach B about the CG in body axes: 36 numbers row by row, or the 21 of its upper triangle")
-          .custom("added_mass.prolate_spheroid", "m", "none", "length > 0, 0 < diameter ≤ length",
-                  "{length, diameter, center_from_bail}: the matrix from Lamb's k₁, k₂, k′ (instead of matrix)")
-          .boolean("added_mass.munk_terms", &V::munk_terms,
-                   "Approach B: keep Kirchhoff's velocity-product (Munk) terms; the report drops them")
-          .number("max_thrust", &V::max_thrust, "N", 0.0, 1e6, kClosed, "thrust commands saturate at ±this")
-          .number("thrust_offset_z", &V::thrust_offset_z, "m", -10.0, 10.0, kClosed,
-                  "the thrust's line of action above (+z_b) the axis")
-          .nest("rudder", &V::rudder, finParams())
-          .nest("elevator", &V::elevator, finParams());
-  return table;
-}
-
 const ParamTable<EndElementParams>& endElementParams()
 {
   using E = EndElementParams;
@@ -275,46 +169,6 @@ const ParamTable<EndElementParams>& endElementParams()
           .number("normal_drag_coefficient", &E::normal_drag_coefficient, "-", 0.0, 10.0, kClosed, "C_dn")
           .number("tangential_drag_coefficient", &E::tangential_drag_coefficient, "-", 0.0, 10.0, kClosed, "C_dt")
           .number("added_mass_coefficient", &E::added_mass_coefficient, "-", 0.0, 10.0, kClosed, "C_a");
-  return table;
-}
-
-const ParamTable<DepthAutopilotParams>& autopilotParams()
-{
-  using A = DepthAutopilotParams;
-  static const ParamTable<A> table =
-      ParamTable<A>()
-          .number("kp", &A::kp, "rad/m", 0.0, 10.0, kClosed, "elevator per metre of depth error")
-          .number("ki", &A::ki, "rad/(m s)", 0.0, 10.0, kClosed, "elevator per metre-second of integrated error")
-          .number("kd", &A::kd, "rad/(m/s)", 0.0, 100.0, kClosed, "elevator per m/s of vertical velocity (world, up)")
-          .number("max_elevator", &A::max_elevator, "rad", 0.0, kHalfPi, kOpen,
-                  "elevator limit (the default vehicle's max_deflection)")
-          .boolean("track_keeping", &A::track_keeping, "steer on the ship's track; false: rudder 0")
-          .number("rudder_kp", &A::rudder_kp, "rad/m", 0.0, 10.0, kClosed, "rudder per metre of lateral offset")
-          .number("rudder_kd", &A::rudder_kd, "rad/(m/s)", 0.0, 100.0, kClosed, "rudder per m/s of offset rate")
-          .number("max_rudder", &A::max_rudder, "rad", 0.0, kHalfPi, kOpen, "rudder limit")
-          .number("track_spacing", &A::track_spacing, "m", 0.01, 1000.0, kClosed,
-                  "a ship position is stored each time the ship has moved this far")
-          .bounded(
-              "track_length", &A::track_length, "m",
-              [](const A& a) { return std::make_pair(std::max(10.0, 2.0 * a.track_spacing), 1e6); },
-              "at least 10 m and two track_spacing", "past track kept (older points dropped)")
-          .number("thrust", &A::thrust, "N", -1e6, 1e6, kClosed, "constant thrust command")
-          .number("odom_timeout", &A::odom_timeout, "s", 0.0, 3600.0, kOpen,
-                  "no new vehicle odometry for this long (since it arrived): fins centred")
-          .number("max_depth", &A::max_depth, "m", 0.0, 1e5, kOpen, "setpoints above it are rejected")
-          .choice("actuator", &A::actuator,
-                  { { "elevator", A::Actuator::kElevator },
-                    { "winch", A::Actuator::kWinch },
-                    { "both", A::Actuator::kBoth } },
-                  "what holds the depth: the elevator (PID above), the winch (payout rate; needs winch.enabled), "
-                  "or both")
-          .number("winch_kp", &A::winch_kp, "m/m", 0.0, 1000.0, kClosed,
-                  "winch: cable out aimed at per metre of depth error, on top of the planner's steady cable out")
-          .number("winch_ki", &A::winch_ki, "m/(m s)", 0.0, 100.0, kClosed,
-                  "winch: cable out per metre-second of integrated depth error")
-          .number("winch_time_constant", &A::winch_time_constant, "s", 0.0, 1000.0, kOpen,
-                  "winch: payout rate = (cable out aimed at − cable out) / this")
-          .number("max_payout_rate", &A::max_payout_rate, "m/s", 0.0, 100.0, kOpen, "winch: payout command limit");
   return table;
 }
 

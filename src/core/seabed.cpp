@@ -2,7 +2,6 @@
 
 #include "tow_sim/core/param_tables.h"
 #include "tow_sim/core/params.h"
-#include "tow_sim/core/simulator.h"
 
 #include <algorithm>
 #include <cmath>
@@ -136,12 +135,30 @@ void Seabed::contactJacobian(const Eigen::Vector3d& p_W, const Eigen::Vector3d& 
   df_dv -= p_.friction * push * (I3 - slide * slide.transpose() / (root * root)) / root * along;
 }
 
-void liftAboveSeabed(const Seabed& seabed, ChainState& state)
+const ParamTable<SeabedParams>& seabedParams()
 {
-  if (!seabed.present())
-    return;
-  for (int j = 0; j < state.x.cols(); ++j)
-    state.x(2, j) = std::max(state.x(2, j), seabed.bottomZ(state.x(0, j), state.x(1, j)));
+  using B = SeabedParams;
+  static const ParamTable<B> table =
+      ParamTable<B>()
+          .choice("type", &B::type,
+                  { { "none", SeabedParams::Type::kNone },
+                    { "flat", SeabedParams::Type::kFlat },
+                    { "grid", SeabedParams::Type::kGrid } },
+                  "no bottom, flat at depth, or a bathymetry grid")
+          .number("depth", &B::depth, "m", 0.0, 12000.0, kOpen, "flat bottom")
+          .text("grid_file", &B::grid_file, "a readable file",
+                "YAML {origin: [x, y], spacing: [dx, dy], depth: [[row at y0], …]} [m], depths ≥ 0, at least 2 × 2; "
+                "relative to the configuration's folder (offline), else absolute")
+          .number("stiffness", &B::stiffness, "N/m per m", 0.0, 1e8, kOpen,
+                  "cable: normal force per metre of penetration, per metre of cable")
+          .number("damping", &B::damping, "N s/m per m", 0.0, 1e8, kClosed, "cable: on the rate of penetration")
+          .number("vehicle_stiffness", &B::vehicle_stiffness, "N/m", 0.0, 1e9, kOpen,
+                  "at each of the vehicle's nose and tail points")
+          .number("vehicle_damping", &B::vehicle_damping, "N s/m", 0.0, 1e9, kClosed, "at each of them")
+          .number("friction", &B::friction, "-", 0.0, 5.0, kClosed, "Coulomb coefficient: sliding ≤ friction × normal")
+          .number("friction_speed", &B::friction_speed, "m/s", 0.0, 10.0, kOpen,
+                  "the friction force builds up over this sliding speed");
+  return table;
 }
 
 }  // namespace tow_sim

@@ -277,4 +277,60 @@ VehicleOutputs Vehicle::outputs(double t, const ElementKinematics& k, const Envi
   return o;
 }
 
+const ParamTable<VehicleParams>& vehicleParams()
+{
+  using V = VehicleParams;
+  const auto along = [](const V& v) { return std::make_pair(-v.nose_from_bail, v.tail_from_bail); };
+  const char* along_text = "from -nose_from_bail to tail_from_bail";
+  // Inertia entries: a product of inertia sets both of its (symmetric) places.
+  auto get = [](int i, int j) { return [i, j](const V& v) { return v.inertia_B(i, j); }; };
+  auto set = [](int i, int j)
+  {
+    return [i, j](V& v, double value)
+    {
+      v.inertia_B(i, j) = value;
+      v.inertia_B(j, i) = value;
+    };
+  };
+  static const ParamTable<V> table =
+      ParamTable<V>()
+          .number("tail_from_bail", &V::tail_from_bail, "m", 0.0, 100.0, kOpen,
+                  "d_{ν+1}: the tail point, which fixes the axis")
+          .bounded("cg_from_bail", &V::cg_from_bail, "m", along, along_text, "d_{ν+2}: centre of gravity")
+          .bounded("horizontal_fin_from_bail", &V::horizontal_fin_from_bail, "m", along, along_text,
+                   "d_{ν+3}: elevator axis")
+          .bounded("vertical_fin_from_bail", &V::vertical_fin_from_bail, "m", along, along_text, "d_{ν+4}: rudder axis")
+          .number("nose_from_bail", &V::nose_from_bail, "m", 0.0, 100.0, kClosed, "d_{ν+5}, measured forward")
+          .bounded("cb_from_bail", &V::cb_from_bail, "m", along, along_text, "d_{ν+6}: centre of buoyancy")
+          .number("mass", &V::mass, "kg", 0.0, 1e6, kOpen, "in air")
+          .number("displaced_volume", &V::displaced_volume, "m^3", 0.0, 1e3, kClosed, "buoyancy ρgV at the CB")
+          .numberAt("inertia.xx", get(0, 0), set(0, 0), "kg m^2", 0.0, 1e9, kOpen,
+                    "roll inertia about the CG, body axes (FLU)")
+          .numberAt("inertia.yy", get(1, 1), set(1, 1), "kg m^2", 0.0, 1e9, kOpen,
+                    "pitch inertia (the matrix: positive definite)")
+          .numberAt("inertia.zz", get(2, 2), set(2, 2), "kg m^2", 0.0, 1e9, kOpen, "yaw inertia")
+          .numberAt("inertia.xy", get(0, 1), set(0, 1), "kg m^2", -1e9, 1e9, kClosed,
+                    "product of inertia (the matrix symmetric)")
+          .numberAt("inertia.xz", get(0, 2), set(0, 2), "kg m^2", -1e9, 1e9, kClosed, "product of inertia")
+          .numberAt("inertia.yz", get(1, 2), set(1, 2), "kg m^2", -1e9, 1e9, kClosed, "product of inertia")
+          .number("c1", &V::c1, "N s^2/m^3", 0.0, 1e6, kClosed, "tangential velocity-force constant (bail to tail)")
+          .number("c2", &V::c2, "N s^2/m^3", 0.0, 1e6, kClosed, "normal one, with its rotation-drag moment")
+          .choice("added_mass.approach", &V::added_mass_approach,
+                  { { "A", AddedMassApproach::kA }, { "B", AddedMassApproach::kB } },
+                  "A: −e(a − (a·s)s) at the bail–tail midpoint (report); B: Kirchhoff 6×6")
+          .number("added_mass.e", &V::added_mass_a, "kg", 0.0, 1e6, kClosed, "e_{ν+1} of Approach A")
+          .custom("added_mass.matrix", "kg, kg m, kg m^2", "zeros", "symmetric positive semi-definite",
+                  "Approach B about the CG in body axes: 36 numbers row by row, or the 21 of its upper triangle")
+          .custom("added_mass.prolate_spheroid", "m", "none", "length > 0, 0 < diameter ≤ length",
+                  "{length, diameter, center_from_bail}: the matrix from Lamb's k₁, k₂, k′ (instead of matrix)")
+          .boolean("added_mass.munk_terms", &V::munk_terms,
+                   "Approach B: keep Kirchhoff's velocity-product (Munk) terms; the report drops them")
+          .number("max_thrust", &V::max_thrust, "N", 0.0, 1e6, kClosed, "thrust commands saturate at ±this")
+          .number("thrust_offset_z", &V::thrust_offset_z, "m", -10.0, 10.0, kClosed,
+                  "the thrust's line of action above (+z_b) the axis")
+          .nest("rudder", &V::rudder, finParams())
+          .nest("elevator", &V::elevator, finParams());
+  return table;
+}
+
 }  // namespace tow_sim

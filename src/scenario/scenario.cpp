@@ -7,6 +7,7 @@
 
 #include "tow_sim/config/param_yaml.h"
 #include "tow_sim/core/constants.h"
+#include "tow_sim/core/depth_autopilot.h"
 #include "tow_sim/core/param_tables.h"
 #include "tow_sim/scenario/scenario_tables.h"
 
@@ -17,7 +18,6 @@ namespace
 using detail::fail;
 using detail::ParamReader;
 using detail::Section;
-constexpr bool kOpen = true, kClosed = false;
 }  // namespace
 
 const ParamTable<Scenario>& shipParams()

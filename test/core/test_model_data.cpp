@@ -7,6 +7,7 @@
 #include <random>
 
 #include "tow_sim/core/equilibrium.h"
+#include "tow_sim/core/simulator.h"
 #include "tow_sim/core/vehicle.h"
 
 namespace tow_sim

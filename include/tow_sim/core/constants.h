@@ -15,7 +15,13 @@ inline constexpr double kDegree = kPi / 180.0;  // [rad] one degree
 
 // REP-103 attitude of a body from its axes in the world (ENU): pitch nose down positive from the x (forward)
 // axis, yaw from the y (port) axis, so that both stay defined when the body points straight up or down.
-inline double pitchOf(const Eigen::Vector3d& x_axis_W) { return -std::asin(std::clamp(x_axis_W.z(), -1.0, 1.0)); }
-inline double yawOf(const Eigen::Vector3d& y_axis_W) { return std::atan2(-y_axis_W.x(), y_axis_W.y()); }
+inline double pitchOf(const Eigen::Vector3d& x_axis_W)
+{
+  return -std::asin(std::clamp(x_axis_W.z(), -1.0, 1.0));
+}
+inline double yawOf(const Eigen::Vector3d& y_axis_W)
+{
+  return std::atan2(-y_axis_W.x(), y_axis_W.y());
+}
 
 }  // namespace tow_sim

@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "tow_sim/core/param_table.h"
+
 namespace tow_sim
 {
 struct DepthAutopilotParams
@@ -57,6 +59,8 @@ struct DepthAutopilotParams
   // Throws std::invalid_argument naming `prefix + key`, the value and its range.
   void validate(const std::string& prefix = "") const;
 };
+// The parameter table of the depth autopilot (param_table.h): every key with its unit, range, default and meaning.
+const ParamTable<DepthAutopilotParams>& autopilotParams();
 
 // The ship's past track: positions stored every `spacing` metres travelled, at most `length` metres of
 // them (a bounded deque). The vehicle's lateral offset is measured from the nearest segment; the oldest

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "tow_sim/core/chain_model.h"
-#include "tow_sim/core/simulator.h"
+#include "tow_sim/core/chain_state.h"
 
 namespace tow_sim
 {

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "tow_sim/core/param_table.h"
+
 namespace tow_sim
 {
 // A coefficient as a function of the angle of attack, given on [0, pi/2] by (angle [rad], value)
@@ -43,6 +45,8 @@ struct FinPairParams
   double max_rate = 0.35;                       // [rad/s] servo slew rate (20 deg/s), > 0
   double center_of_pressure_offset = 0.0;       // [m] chord-wise, aft of the fin's hinge axis, for the hinge moment
 };
+// The parameter table of a fin pair (param_table.h): every key with its unit, range, default and meaning.
+const ParamTable<FinPairParams>& finParams();
 
 void validate(const FinPairParams& fin, const std::string& prefix);
 

@@ -17,6 +17,10 @@
 
 namespace tow_sim
 {
+// The lower end of a number's range: open, (lo, hi], or closed, [lo, hi].
+inline constexpr bool kOpen = true;
+inline constexpr bool kClosed = false;
+
 enum class ParamKind
 {
   kNumber,  // double; kInteger: int; both within [lo, hi] (or (lo, hi]); may be optional (unset)

@@ -5,6 +5,8 @@
 #include <Eigen/Core>
 #include <string>
 
+#include "tow_sim/core/param_table.h"
+
 namespace tow_sim
 {
 // Depths on a regular grid in the world's horizontal plane; bilinear between nodes, the edge values
@@ -35,6 +37,8 @@ struct SeabedParams
   double friction = 0.5;             // [-] Coulomb coefficient, [0, 5]
   double friction_speed = 0.05;      // [m/s] the friction force builds up over this sliding speed, (0, 10]
 };
+// The parameter table of the seabed (param_table.h): every key with its unit, range, default and meaning.
+const ParamTable<SeabedParams>& seabedParams();
 
 // Throws std::invalid_argument naming "<prefix>.<key>", the value and the range.
 void validate(const SeabedParams& seabed, const std::string& prefix = "seabed");
@@ -67,10 +71,5 @@ public:
 private:
   SeabedParams p_;
 };
-
-struct ChainState;
-// Raises every joint of `state` that lies below the bottom onto it (a start from a shape computed
-// without the seabed; the simulator's reset then restores the segment lengths).
-void liftAboveSeabed(const Seabed& seabed, ChainState& state);
 
 }  // namespace tow_sim

@@ -14,9 +14,11 @@
 
 #include "tow_sim/core/chain_model.h"
 #include "tow_sim/core/chain_solver.h"
+#include "tow_sim/core/chain_state.h"
 #include "tow_sim/core/fins.h"
 #include "tow_sim/core/implicit_stepper.h"
 #include "tow_sim/core/rosenbrock_tableau.h"
+#include "tow_sim/core/run_report.h"
 
 namespace tow_sim
 {
@@ -25,141 +27,6 @@ using ShipMotion = std::function<ShipEndState(double t)>;
 
 // A tow point moving with constant velocity: p(t) = p0 + v t.
 ShipMotion constantVelocityShip(const Eigen::Vector3d& p0_W, const Eigen::Vector3d& v_W);
-
-// Joint positions and velocities x_2 .. x_{nu+2} (3 x (nu+1)), world.
-struct ChainState
-{
-  Eigen::Matrix3Xd x;  // [m]
-  Eigen::Matrix3Xd v;  // [m/s]
-};
-
-// A straight chain of the given geometry (the model's as configured) from the tow point along `direction`,
-// every joint moving with `velocity`.
-ChainState straightChain(const ChainGeometry& geometry, const Eigen::Vector3d& tow_point_W,
-                         const Eigen::Vector3d& direction_W, const Eigen::Vector3d& velocity_W);
-ChainState straightChain(const ChainModel& model, const Eigen::Vector3d& tow_point_W,
-                         const Eigen::Vector3d& direction_W, const Eigen::Vector3d& velocity_W);
-
-// Largest |(|x_{l+1} - x_l|) / d_l - 1| over the elements from first_element on: the relative length error
-// (an elastic cable's segments stretch: only its end body has a length to keep).
-double maxRelativeLengthError(const ChainGeometry& geometry, const Eigen::Vector3d& tow_point_W,
-                              const Eigen::Ref<const Eigen::Matrix3Xd>& x, int first_element = 0);
-
-// Removes from the first `segments` joints' velocities, from the tow point aft, each segment's stretch rate
-// (the relative velocity along it), as the projection does for rigid links.
-void removeStretchRates(const ShipEndState& tow_point, int segments, ChainState& state);
-
-// The strain eps = |x_{l+1} - x_l| / d_l - 1 of each cable segment (nu values), joints x_1 .. x_{nu+2}.
-std::vector<double> segmentStrains(const ChainGeometry& geometry, const Eigen::Matrix3Xd& joints);
-
-// The integrator's state vector: joint positions x_2 .. x_{nu+2} (3 x (nu+1)), their velocities, the cable
-// out [m] and the payout rate [m/s], in that order. Named views instead of index arithmetic.
-struct StateLayout
-{
-  int joints = 0;     // nu + 1
-  bool free = false;  // a parted cable: the free first joint's position and velocity follow (6 more)
-  int remnant = 0;    // and the joints of the cable left on the ship, x_2 .. x_j: positions, velocities
-  std::size_t shipSideOffset() const { return 6 * static_cast<std::size_t>(joints) + 2 + (free ? 6 : 0); }
-  std::size_t size() const { return shipSideOffset() + 6 * static_cast<std::size_t>(remnant); }
-  Eigen::Map<Eigen::Matrix3Xd> shipSidePositions(std::vector<double>& y) const
-  {
-    return { y.data() + shipSideOffset(), 3, remnant };
-  }
-  Eigen::Map<const Eigen::Matrix3Xd> shipSidePositions(const std::vector<double>& y) const
-  {
-    return { y.data() + shipSideOffset(), 3, remnant };
-  }
-  Eigen::Map<Eigen::Matrix3Xd> shipSideVelocities(std::vector<double>& y) const
-  {
-    return { y.data() + shipSideOffset() + 3 * remnant, 3, remnant };
-  }
-  Eigen::Map<const Eigen::Matrix3Xd> shipSideVelocities(const std::vector<double>& y) const
-  {
-    return { y.data() + shipSideOffset() + 3 * remnant, 3, remnant };
-  }
-  Eigen::Map<Eigen::Matrix3Xd> positions(std::vector<double>& y) const { return { y.data(), 3, joints }; }
-  Eigen::Map<const Eigen::Matrix3Xd> positions(const std::vector<double>& y) const { return { y.data(), 3, joints }; }
-  Eigen::Map<Eigen::Matrix3Xd> velocities(std::vector<double>& y) const { return { y.data() + 3 * joints, 3, joints }; }
-  Eigen::Map<const Eigen::Matrix3Xd> velocities(const std::vector<double>& y) const
-  {
-    return { y.data() + 3 * joints, 3, joints };
-  }
-  double& cableOut(std::vector<double>& y) const { return y[6 * static_cast<std::size_t>(joints)]; }
-  double cableOut(const std::vector<double>& y) const { return y[6 * static_cast<std::size_t>(joints)]; }
-  double& payoutRate(std::vector<double>& y) const { return y[6 * static_cast<std::size_t>(joints) + 1]; }
-  double payoutRate(const std::vector<double>& y) const { return y[6 * static_cast<std::size_t>(joints) + 1]; }
-  Eigen::Map<Eigen::Vector3d> freePosition(std::vector<double>& y) const
-  {
-    return Eigen::Map<Eigen::Vector3d>(y.data() + 6 * joints + 2);
-  }
-  Eigen::Map<const Eigen::Vector3d> freePosition(const std::vector<double>& y) const
-  {
-    return Eigen::Map<const Eigen::Vector3d>(y.data() + 6 * joints + 2);
-  }
-  Eigen::Map<Eigen::Vector3d> freeVelocity(std::vector<double>& y) const
-  {
-    return Eigen::Map<Eigen::Vector3d>(y.data() + 6 * joints + 5);
-  }
-  Eigen::Map<const Eigen::Vector3d> freeVelocity(const std::vector<double>& y) const
-  {
-    return Eigen::Map<const Eigen::Vector3d>(y.data() + 6 * joints + 5);
-  }
-};
-
-// The cable parting (cable.break_at_breaking_load): when, where and at what tension.
-struct PartingEvent
-{
-  double t = 0.0;        // [s]
-  int joint = 0;         // 1 = the tow point .. nu + 1 = the bail: the forward joint of element joint - 1
-  double tension = 0.0;  // [N] |T| there, above breaking_load
-};
-
-// Lateral diversion (the report's): horizontal offset of a point from the line through the ship along
-// the unit horizontal track direction, positive to port, and its rate for a fixed track direction.
-struct Diversion
-{
-  double offset = 0.0;  // [m]
-  double rate = 0.0;    // [m/s]
-};
-Diversion lateralDiversion(const Eigen::Vector3d& p_W, const Eigen::Vector3d& v_W, const ShipEndState& ship,
-                           const Eigen::Vector3d& track_direction_W);
-
-// Slack flags of the tensions T_1 .. T_{nu+1} (3 x (nu+1)) at joints x_1 .. x_{nu+2} (3 x (nu+2)): element
-// lambda is slack where its tension pushes instead of pulls, T_lambda . (x_{lambda+1} - x_lambda) > 0 (the
-// rigid links carry compression; a real cable would go slack there).
-std::vector<bool> slackFlags(const Eigen::Matrix3Xd& joints, const Eigen::Matrix3Xd& tensions);
-
-// The smallest and largest of a series of values (empty: min > max).
-struct ValueRange
-{
-  double min = std::numeric_limits<double>::infinity();
-  double max = -std::numeric_limits<double>::infinity();
-  void add(double v)
-  {
-    min = std::min(min, v);
-    max = std::max(max, v);
-  }
-  void add(const ValueRange& r)
-  {
-    min = std::min(min, r.min);
-    max = std::max(max, r.max);
-  }
-  bool empty() const { return min > max; }
-};
-
-struct StepReport
-{
-  int steps = 0;                  // accepted steps
-  int rejected = 0;               // steps the error control rejected
-  double max_length_error = 0.0;  // [-] largest relative length error left by a step, before projection
-  ValueRange tension_ship;        // [N] |T_1| at the end of each accepted step
-  ValueRange tension_vehicle;     // [N] |T_{nu+1}| likewise
-  int snaps = 0;                  // elastic cable: segments that went from slack (T = 0 at or below their
-                                  // rest length) to taut (T > 0)
-  // [-] elastic cable: the largest segment strain at the end of a step (-inf: none)
-  double max_strain = -std::numeric_limits<double>::infinity();
-  std::optional<PartingEvent> parting;  // the cable parted during these steps (advanceTo goes on after it)
-};
 
 // What the simulator holds between steps (a saved state): enough to go on bit-identically. The model, the
 // ship and the environment (currents, the sea's clock) are the caller's, not part of it.
@@ -291,7 +158,7 @@ private:
   // The element lengths for the state y at time t: the first segment from the cable out, its rates from
   // the winch law (the model's as configured while the winch is off).
   ChainGeometry geometryOf(const StateVector& y) const;
-  bool remesh(double t);                                       // split or merge the first segment
+  bool remesh(double t);  // split or merge the first segment
   // Segments of the first section now (the winch's: the sections aft of it keep theirs).
   int firstSectionSegments() const { return data_.geometry.segments - data_.geometry.aftSectionSegments(); }
   void splitFirstSegment(double t);

@@ -16,6 +16,7 @@
 
 #include "tow_sim/core/element.h"
 #include "tow_sim/core/fins.h"
+#include "tow_sim/core/param_table.h"
 
 namespace tow_sim
 {
@@ -63,6 +64,8 @@ struct VehicleParams
   FinPairParams rudder;
   FinPairParams elevator;
 };
+// The parameter table of the vehicle (param_table.h): every key with its unit, range, default and meaning.
+const ParamTable<VehicleParams>& vehicleParams();
 
 // Throws std::invalid_argument naming the parameter ("vehicle.<key>"), the value and the range.
 void validate(const VehicleParams& vehicle, const std::string& prefix = "vehicle");

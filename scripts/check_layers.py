@@ -1,0 +1,95 @@
+#!/usr/bin/env python3
+"""Checks that includes point down the layer order (docs/architecture.md), never up.
+
+    check_layers.py [REPO]
+
+Libraries, lowest first: core, config, scenario, ros; nodes/ and tools/ may include any of them. A file
+of one library includes only headers of its own library or a lower one (the ROS messages and services
+generated into tow_sim/ count as ros). Inside the core each header has a layer (LAYERS below, lowest
+first) and a source file takes the layer of the header it implements (of the same name, or as SOURCES
+says); a core file includes only core headers of its own layer or a lower one. A core header or source
+missing from LAYERS and SOURCES is itself a violation, so that a new one is placed deliberately. Prints each violation as FILE:LINE and
+exits 1 if there is any.
+"""
+import pathlib
+import re
+import sys
+
+LIBRARIES = ["core", "config", "scenario", "ros"]
+LAYERS = [
+    ["constants", "geometry", "param_table"],
+    ["waves", "params", "param_tables", "numeric_csv", "winch", "tension_limits"],
+    ["fins", "seabed", "element", "ship_response"],
+    ["added_mass", "vehicle"],
+    ["chain_model"],
+    ["chain_state", "chain_solver", "chain_jacobian", "rosenbrock_tableau", "run_report"],
+    ["implicit_stepper"],
+    ["simulator"],
+    ["equilibrium", "ship_track", "odometry_check", "depth_autopilot", "track_trail", "simulation_config"],
+    ["tow_run"],
+    ["saved_state"],
+]
+LAYER = {name: i for i, names in enumerate(LAYERS) for name in names}
+# Core sources that implement a header of another name.
+SOURCES = {
+    "simulator_implicit": "simulator",
+    "simulator_parting": "simulator",
+    "simulator_state": "simulator",
+    "snapshot_interpolation": "tow_run",
+}
+INCLUDE = re.compile(r'^\s*#\s*include\s+"tow_sim/([^"]+)\.h"', re.M)
+
+
+def library_of(path):
+    """The library of a source or header (None: nodes, tools and tests, which may include anything)."""
+    parts = path.parts
+    if parts[0] == "include" and len(parts) > 2 and parts[1] == "tow_sim":
+        return parts[2]
+    if parts[0] == "src" and len(parts) > 1:
+        return parts[1] if parts[1] in LIBRARIES else None
+    return None
+
+
+def included_library(target):
+    return target.split("/")[0] if "/" in target else "ros"  # tow_sim/Foo.h: a generated message
+
+
+def check(repo):
+    problems = []
+    files = sorted(p for folder in ("include", "src") for p in (repo / folder).rglob("*") if p.suffix in (".h", ".cpp"))
+    for path in files:
+        name = path.relative_to(repo)
+        library = library_of(name)
+        if library is None:
+            continue
+        text = path.read_text()
+        includes = [(text.count("\n", 0, m.start()) + 1, m.group(1)) for m in INCLUDE.finditer(text)]
+        rank = LIBRARIES.index(library)
+        for line, target in includes:
+            other = included_library(target)
+            if other in LIBRARIES and LIBRARIES.index(other) > rank:
+                problems.append(f"{name}:{line}: {library} includes tow_sim/{target}.h of {other}, a higher library")
+        if library != "core":
+            continue
+        own = SOURCES.get(name.stem, name.stem)
+        if own not in LAYER:
+            problems.append(f"{name}:1: {name.stem} has no layer in scripts/check_layers.py (LAYERS or SOURCES)")
+            continue
+        for line, target in includes:
+            if target.startswith("core/") and LAYER.get(target[5:], len(LAYERS)) > LAYER[own]:
+                problems.append(f"{name}:{line}: core/{own} (layer {LAYER[own]}) includes {target}.h "
+                                f"(layer {LAYER.get(target[5:], 'none')}), up the layer order")
+    return files, problems
+
+
+def main(argv):
+    repo = pathlib.Path(argv[0] if argv else pathlib.Path(__file__).resolve().parent.parent)
+    files, problems = check(repo)
+    for problem in problems:
+        print(problem)
+    print(f"layers: {len(files)} files checked, {len(problems)} includes up the layer order")
+    return 1 if problems else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
