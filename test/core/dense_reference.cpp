@@ -24,83 +24,103 @@ DenseSolution solveDense(const ChainModel& model, double t, const ShipEndState& 
   return solveDense(model, data.geometry, data, t, ship, x, v);
 }
 
+namespace
+{
+// Element e's six rows of the dense system (from row 6 e): its linear momentum, its angular momentum about
+// its CG normal to its axis, and its length constraint, in the joint accelerations a_j (at 3 j) and the
+// tensions T_e (at 3 n + 3 e). A point body at its aft joint is part of the element's free body: its
+// inertia and loads act at that joint, so they enter the linear momentum and, about the CG, with the arm
+// (1 - gamma) l s.
+void addElementRows(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data, double t,
+                    const ShipEndState& ship, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, int e,
+                    Eigen::MatrixXd& A, Eigen::VectorXd& b)
+{
+  const int n = geometry.elementCount();
+  auto acc = [](int joint) { return 3 * joint; };
+  auto ten = [n](int element) { return 3 * n + 3 * element; };
+  const Eigen::Matrix3d I3 = Eigen::Matrix3d::Identity();
+  const Eigen::Vector3d x_f = e == 0 ? ship.p_W : Eigen::Vector3d(x.col(e - 1));
+  const Eigen::Vector3d v_f = e == 0 ? ship.v_W : Eigen::Vector3d(v.col(e - 1));
+  const ElementKinematics k = ElementKinematics::fromJoints(x_f, x.col(e), v_f, v.col(e));
+  BodyDynamics body;
+  model.elementDynamics(e, t, k, geometry, data, body);
+  // A winch changes the first segment's length L(t): differentiating s = (x_a - x_f)/L twice,
+  // s x d2s/dt2 = s x (a_a - a_f)/L - 2 (L'/L) s x ds/dt, and w = s x ds/dt: the angular acceleration
+  // has the known part -2 (L'/L) w, moved here to the loads.
+  if (e == 0)
+    body.wrench -= body.mass.rightCols<3>() * (-2.0 * geometry.first_rate / k.length * k.omega);
+  const double g = body.cg_fraction;
+  const double l = k.length;
+  const Eigen::Vector3d& s = k.s;
+
+  // a_G = (1-g) a_f + g a_a ; dw/dt = s x (a_a - a_f) / l   (no roll, Appendix A)
+  Eigen::Matrix<double, 6, 3> C_f, C_a;
+  C_f << (1.0 - g) * I3, -cross(s) / l;
+  C_a << g * I3, cross(s) / l;
+  const Eigen::Matrix<double, 6, 3> MC_f = body.mass * C_f;
+  Eigen::Matrix<double, 6, 3> MC_a = body.mass * C_a;
+  if (const JointBody* point = model.bodyAft(e, geometry))
+  {
+    // m_p a_a on the linear rows and (1-g) l s x (m_p a_a) on the angular ones; its loads likewise.
+    const Eigen::Vector3d f = point->force(data.environment, t, k.x_a, k.v_a);
+    MC_a.topRows<3>() += point->inertia() * I3;
+    MC_a.bottomRows<3>() += ((1.0 - g) * l) * cross(s) * point->inertia();
+    body.wrench.head<3>() += f;
+    body.wrench.tail<3>() += ((1.0 - g) * l) * s.cross(f);
+  }
+
+  // Two unit vectors normal to s for the angular-momentum rows.
+  Eigen::Vector3d e1 = s.unitOrthogonal();
+  Eigen::Vector3d e2 = s.cross(e1);
+  Eigen::Matrix<double, 2, 3> E;
+  E << e1.transpose(), e2.transpose();
+
+  const int row = 6 * e;
+  // Linear momentum: m a_G (+ added mass) - T_e + T_{e+1} = F*.
+  A.block<3, 3>(row, acc(e)) += MC_a.topRows<3>();
+  if (e > 0)
+    A.block<3, 3>(row, acc(e - 1)) += MC_f.topRows<3>();
+  else
+    b.segment<3>(row) -= MC_f.topRows<3>() * ship.a_W;
+  A.block<3, 3>(row, ten(e)) -= I3;
+  if (e + 1 < n)
+    A.block<3, 3>(row, ten(e + 1)) += I3;
+  b.segment<3>(row) += body.wrench.head<3>();
+
+  // Angular momentum about the CG, normal to s:
+  // I dw/dt (+ added mass) + s x (g l T_e + (1-g) l T_{e+1}) = M*.
+  A.block<2, 3>(row + 3, acc(e)) += E * MC_a.bottomRows<3>();
+  if (e > 0)
+    A.block<2, 3>(row + 3, acc(e - 1)) += E * MC_f.bottomRows<3>();
+  else
+    b.segment<2>(row + 3) -= E * MC_f.bottomRows<3>() * ship.a_W;
+  A.block<2, 3>(row + 3, ten(e)) += E * cross(s) * (g * l);
+  if (e + 1 < n)
+    A.block<2, 3>(row + 3, ten(e + 1)) += E * cross(s) * ((1.0 - g) * l);
+  b.segment<2>(row + 3) += E * body.wrench.tail<3>();
+
+  // Length constraint: s.(a_a - a_f) = -|v_a - v_f|^2 / l.
+  A.block<1, 3>(row + 5, acc(e)) += s.transpose();
+  if (e > 0)
+    A.block<1, 3>(row + 5, acc(e - 1)) -= s.transpose();
+  else
+    b(row + 5) += s.dot(ship.a_W);
+  b(row + 5) -= (k.v_a - k.v_f).squaredNorm() / l;
+  // A winch changes the first segment's length L(t): d^2/dt^2 |x_a - x_f|^2 / 2 = L'^2 + L L''.
+  if (e == 0)
+    b(row + 5) += (geometry.first_rate * geometry.first_rate + l * geometry.first_acceleration) / l;
+}
+}  // namespace
+
 DenseSolution solveDense(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data, double t,
                          const ShipEndState& ship, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v)
 {
   const int n = geometry.elementCount();
   const int size = 6 * n;
-  // Unknowns: a_j (joint x_{j+2}) at 3j, T_e (joint x_{e+1}) at 3n + 3e.
-  auto acc = [](int joint) { return 3 * joint; };
-  auto ten = [n](int element) { return 3 * n + 3 * element; };
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(size, size);
   Eigen::VectorXd b = Eigen::VectorXd::Zero(size);
-  const Eigen::Matrix3d I3 = Eigen::Matrix3d::Identity();
-
   for (int e = 0; e < n; ++e)
-  {
-    const Eigen::Vector3d x_f = e == 0 ? ship.p_W : Eigen::Vector3d(x.col(e - 1));
-    const Eigen::Vector3d v_f = e == 0 ? ship.v_W : Eigen::Vector3d(v.col(e - 1));
-    const ElementKinematics k = ElementKinematics::fromJoints(x_f, x.col(e), v_f, v.col(e));
-    BodyDynamics body;
-    model.elementDynamics(e, t, k, geometry, data, body);
-    // A winch changes the first segment's length L(t): differentiating s = (x_a - x_f)/L twice,
-    // s x d2s/dt2 = s x (a_a - a_f)/L - 2 (L'/L) s x ds/dt, and w = s x ds/dt: the angular acceleration
-    // has the known part -2 (L'/L) w, moved here to the loads.
-    if (e == 0)
-      body.wrench -= body.mass.rightCols<3>() * (-2.0 * geometry.first_rate / k.length * k.omega);
-    const double g = body.cg_fraction;
-    const double l = k.length;
-    const Eigen::Vector3d& s = k.s;
-
-    // a_G = (1-g) a_f + g a_a ; dw/dt = s x (a_a - a_f) / l   (no roll, Appendix A)
-    Eigen::Matrix<double, 6, 3> C_f, C_a;
-    C_f << (1.0 - g) * I3, -cross(s) / l;
-    C_a << g * I3, cross(s) / l;
-    const Eigen::Matrix<double, 6, 3> MC_f = body.mass * C_f;
-    const Eigen::Matrix<double, 6, 3> MC_a = body.mass * C_a;
-
-    // Two unit vectors normal to s for the angular-momentum rows.
-    Eigen::Vector3d e1 = s.unitOrthogonal();
-    Eigen::Vector3d e2 = s.cross(e1);
-    Eigen::Matrix<double, 2, 3> E;
-    E << e1.transpose(), e2.transpose();
-
-    const int row = 6 * e;
-    // Linear momentum: m a_G (+ added mass) - T_e + T_{e+1} = F*.
-    A.block<3, 3>(row, acc(e)) += MC_a.topRows<3>();
-    if (e > 0)
-      A.block<3, 3>(row, acc(e - 1)) += MC_f.topRows<3>();
-    else
-      b.segment<3>(row) -= MC_f.topRows<3>() * ship.a_W;
-    A.block<3, 3>(row, ten(e)) -= I3;
-    if (e + 1 < n)
-      A.block<3, 3>(row, ten(e + 1)) += I3;
-    b.segment<3>(row) += body.wrench.head<3>();
-
-    // Angular momentum about the CG, normal to s:
-    // I dw/dt (+ added mass) + s x (g l T_e + (1-g) l T_{e+1}) = M*.
-    A.block<2, 3>(row + 3, acc(e)) += E * MC_a.bottomRows<3>();
-    if (e > 0)
-      A.block<2, 3>(row + 3, acc(e - 1)) += E * MC_f.bottomRows<3>();
-    else
-      b.segment<2>(row + 3) -= E * MC_f.bottomRows<3>() * ship.a_W;
-    A.block<2, 3>(row + 3, ten(e)) += E * cross(s) * (g * l);
-    if (e + 1 < n)
-      A.block<2, 3>(row + 3, ten(e + 1)) += E * cross(s) * ((1.0 - g) * l);
-    b.segment<2>(row + 3) += E * body.wrench.tail<3>();
-
-    // Length constraint: s.(a_a - a_f) = -|v_a - v_f|^2 / l.
-    A.block<1, 3>(row + 5, acc(e)) += s.transpose();
-    if (e > 0)
-      A.block<1, 3>(row + 5, acc(e - 1)) -= s.transpose();
-    else
-      b(row + 5) += s.dot(ship.a_W);
-    b(row + 5) -= (k.v_a - k.v_f).squaredNorm() / l;
-    // A winch changes the first segment's length L(t): d^2/dt^2 |x_a - x_f|^2 / 2 = L'^2 + L L''.
-    if (e == 0)
-      b(row + 5) += (geometry.first_rate * geometry.first_rate + l * geometry.first_acceleration) / l;
-  }
-
+    addElementRows(model, geometry, data, t, ship, x, v, e, A, b);
   const Eigen::VectorXd z = A.fullPivLu().solve(b);
   DenseSolution out;
   out.accelerations = Eigen::Map<const Eigen::Matrix3Xd>(z.data(), 3, n);

@@ -10,6 +10,9 @@
 //   - towed along its axis without gravity: each tension is the tangential drag aft of it plus a body's
 //     1/2 rho C_D A U^2;
 //   - the body's drag derivative in elementJacobian against central differences of the solver's loads;
+//   - random states of a chain of sections and bodies with the winch paying out, in a current: the O(nu)
+//     sweep against the dense Newton-Euler reference (test/core/dense_reference.cpp), in which a body is part
+//     of its segment's free body (its force and inertia at the aft joint, about the CG with their arm);
 //   - released in vacuum and integrated by the simulator (dopri5, tight tolerances), the chain of sections
 //     and bodies keeps its mechanical energy, computed here from positions and velocities.
 #include <gtest/gtest.h>
@@ -17,8 +20,10 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <random>
 
 #include "chain_fixtures.h"
+#include "core/dense_reference.h"
 #include "tow_sim/core/chain_jacobian.h"
 #include "tow_sim/core/chain_solver.h"
 #include "tow_sim/core/constants.h"
@@ -265,6 +270,43 @@ TEST(ChainSections, TheBodysDragDerivativeMatchesCentralDifferencesOfTheSolversL
   EXPECT_LT((analytic - differences).norm(), 1e-6 * differences.norm());
   // The body's drag is most of the block (the test exercises its term).
   EXPECT_GT(body.forceVelocityJacobian(env, 0.0, x.col(e), v.col(e)).norm(), 0.5 * differences.norm());
+}
+
+TEST(ChainSections, RandomStatesMatchTheDenseReference)
+{
+  Environment env;
+  env.current_W = Eigen::Vector3d(0.4, -0.3, 0.05);
+  JointBody clump_body = clump(8, 300.0, 0.03), float_body = clump(3, 5.0, 0.2);
+  clump_body.drag_area = 0.5;
+  float_body.drag_area = 0.2;
+  float_body.added_mass = 150.0;
+  const auto model = makeSectioned(threeSections(), { clump_body, float_body }, env);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int trial = 0; trial < 20; ++trial)
+  {
+    ChainData data = model->initialData();
+    ChainGeometry& g = data.geometry;
+    g.segments += trial % 3;  // the winch has paid out 0, 1 or 2 more of the first section's segments
+    g.first_length = g.nominal_length * (0.6 + 0.3 * (u(rng) + 1.0));
+    g.first_rate = 0.8 * u(rng);
+    g.first_acceleration = 0.1 * u(rng);
+    ShipEndState ship;
+    ship.v_W = Eigen::Vector3d(2.0 + u(rng), u(rng), 0.2 * u(rng));
+    ship.a_W = 0.3 * Eigen::Vector3d(u(rng), u(rng), u(rng));
+    Eigen::Matrix3Xd x(3, g.elementCount()), v(3, g.elementCount()), a(3, g.elementCount()), T;
+    Eigen::Vector3d p = ship.p_W;
+    for (int e = 0; e < g.elementCount(); ++e)
+    {
+      x.col(e) = p += g.elementLength(e) * Eigen::Vector3d(-1.0, 0.4 * u(rng), -0.6 + 0.3 * u(rng)).normalized();
+      v.col(e) = ship.v_W + Eigen::Vector3d(u(rng), u(rng), u(rng));
+    }
+    ChainSolver solver;
+    solver.solve(*model, g, data, 0.0, ship, x, v, a, &T);
+    const test::DenseSolution ref = test::solveDense(*model, g, data, 0.0, ship, x, v);
+    EXPECT_LT((a - ref.accelerations).norm(), 1e-9 * ref.accelerations.norm()) << "trial " << trial;
+    EXPECT_LT((T - ref.tensions).norm(), 1e-9 * ref.tensions.norm()) << "trial " << trial;
+  }
 }
 
 // Kinetic plus potential energy in vacuum: each segment 1/2 m |v_G|^2 + 1/2 (m d^2/12) |w|^2 + m g z_G with
