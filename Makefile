@@ -71,7 +71,7 @@ soak: build
 	cd $(WS) && source devel/setup.bash && rostest tow_sim ship_in_waves.test duration:=600 \
 	  config:=$(REPO)/test/ros/waves_irregular_config.yaml
 	TOW_SIM_SEAWAY_SECONDS=3600 $(WS)/devel/lib/tow_sim/test_waves --gtest_filter=Waves.AnIrregularSeaTowStaysBounded
-	TOW_SIM_SEAWAY_SECONDS=3600 $(WS)/devel/lib/tow_sim/test_elastic_cable \
+	TOW_SIM_SEAWAY_SECONDS=3600 $(WS)/devel/lib/tow_sim/test_elastic_tow \
 	  --gtest_filter=ElasticCable.AnIrregularSeaTowStaysBounded
 	cd $(WS) && source devel/setup.bash && rostest tow_sim ship_in_waves.test duration:=600 \
 	  config:=$(REPO)/test/ros/waves_elastic_config.yaml

@@ -126,40 +126,86 @@ std::vector<std::vector<std::string>> timeseries(const std::string& name)
   return readCsv(path);
 }
 
+// timeseries.csv's columns, as the README documents them.
+const std::vector<std::string> kColumns = { "t",
+                                            "ship_x",
+                                            "ship_y",
+                                            "ship_z",
+                                            "ship_speed",
+                                            "vehicle_x",
+                                            "vehicle_y",
+                                            "vehicle_z",
+                                            "vehicle_roll",
+                                            "vehicle_pitch",
+                                            "vehicle_yaw",
+                                            "depth",
+                                            "layback",
+                                            "diversion",
+                                            "diversion_rate",
+                                            "tension_ship",
+                                            "tension_vehicle",
+                                            "rudder",
+                                            "elevator",
+                                            "thrust",
+                                            "max_length_error",
+                                            "cable_length",
+                                            "payout_rate",
+                                            "vehicle_altitude",
+                                            "seabed_contacts",
+                                            "depth_setpoint",
+                                            "tension_ship_min",
+                                            "tension_ship_max",
+                                            "tension_vehicle_min",
+                                            "tension_vehicle_max",
+                                            "snap_count",
+                                            "max_strain" };
+
+// Every cell of every row finite (blank only where documented), and each output's interval extremes
+// bracketing its tension.
+void expectRowsFinite(const std::string& name, const Scenario& sc, const std::vector<std::vector<std::string>>& rows)
+{
+  const std::vector<std::string>& columns = kColumns;
+  for (size_t r = 1; r < rows.size(); ++r)
+  {
+    ASSERT_EQ(rows[r].size(), columns.size()) << name << " row " << r;
+    for (size_t c = 0; c < rows[r].size(); ++c)
+    {
+      const std::string& cell = rows[r][c];
+      if (cell.empty() && columns[c] == "vehicle_altitude" && sc.config.seabed.type == SeabedParams::Type::kNone)
+        continue;  // documented: blank without a seabed
+      if (cell.empty() && columns[c] == "depth_setpoint" && !sc.autopilot.enabled)
+        continue;  // and without an autopilot
+      ASSERT_TRUE(std::isfinite(std::stod(cell))) << name << " row " << r << " column " << columns[c];
+    }
+    // The interval's extremes bracket the tension at the output time.
+    for (const auto& [value, lo, hi] : { std::tuple<int, int, int>{ 15, 26, 27 }, { 16, 28, 29 } })
+    {
+      const double v = std::stod(rows[r][static_cast<size_t>(value)]);
+      ASSERT_LE(std::stod(rows[r][static_cast<size_t>(lo)]), v) << name << " row " << r;
+      ASSERT_GE(std::stod(rows[r][static_cast<size_t>(hi)]), v) << name << " row " << r;
+    }
+  }
+}
+
+// tow_sim_plot makes the documented plots of a run's folder, and only those that apply to the scenario.
+void expectPlots(const std::string& name, const Scenario& sc, const std::string& out)
+{
+  int status = 0;
+  const std::string plot_log =
+      run(std::string("/usr/bin/python3 ") + TOW_SIM_SOURCE_DIR + "/scripts/tow_sim_plot " + out, &status);
+  ASSERT_EQ(status, 0) << plot_log;
+  for (const char* png : { "depth_diversion.png", "tensions.png", "plan_view.png", "side_view.png" })
+    EXPECT_GT(fileSize(out + "/" + png), 5000) << name << " " << png;
+  EXPECT_EQ(fileSize(out + "/winch.png") > 5000, sc.config.winch.enabled) << name;
+  EXPECT_EQ(fileSize(out + "/seabed.png") > 5000, sc.config.seabed.type != SeabedParams::Type::kNone) << name;
+  const bool heaves = sc.config.environment.waves.type != WaveParams::Type::kNone || !sc.motion_file.empty();
+  EXPECT_EQ(fileSize(out + "/waves.png") > 5000, heaves) << name;
+  EXPECT_EQ(fileSize(out + "/snaps.png") > 5000, sc.config.cable.elastic()) << name;
+}
+
 TEST(Batch, EveryScenarioRunsAndWritesTheDocumentedColumns)
 {
-  const std::vector<std::string> columns = { "t",
-                                             "ship_x",
-                                             "ship_y",
-                                             "ship_z",
-                                             "ship_speed",
-                                             "vehicle_x",
-                                             "vehicle_y",
-                                             "vehicle_z",
-                                             "vehicle_roll",
-                                             "vehicle_pitch",
-                                             "vehicle_yaw",
-                                             "depth",
-                                             "layback",
-                                             "diversion",
-                                             "diversion_rate",
-                                             "tension_ship",
-                                             "tension_vehicle",
-                                             "rudder",
-                                             "elevator",
-                                             "thrust",
-                                             "max_length_error",
-                                             "cable_length",
-                                             "payout_rate",
-                                             "vehicle_altitude",
-                                             "seabed_contacts",
-                                             "depth_setpoint",
-                                             "tension_ship_min",
-                                             "tension_ship_max",
-                                             "tension_vehicle_min",
-                                             "tension_vehicle_max",
-                                             "snap_count",
-                                             "max_strain" };
+  const std::vector<std::string>& columns = kColumns;
   for (const std::string name : kShippedScenarios)
   {
     ASSERT_FALSE(outputRoot().empty()) << "cannot make a temporary folder";
@@ -167,32 +213,12 @@ TEST(Batch, EveryScenarioRunsAndWritesTheDocumentedColumns)
     const ScenarioRun& r = shippedRun(name);
     ASSERT_EQ(r.status, 0) << r.log;
     const std::string& out = r.out;
-    int status = 0;
     const Scenario sc = loadScenarioFile(scenario);
     const auto rows = readCsv(out + "/timeseries.csv");
     ASSERT_FALSE(rows.empty());
     EXPECT_EQ(rows[0], columns) << name;
     EXPECT_EQ(rows.size(), static_cast<size_t>(std::lround(sc.duration / sc.output_interval)) + 2) << name;
-    for (size_t r = 1; r < rows.size(); ++r)
-    {
-      ASSERT_EQ(rows[r].size(), columns.size()) << name << " row " << r;
-      for (size_t c = 0; c < rows[r].size(); ++c)
-      {
-        const std::string& cell = rows[r][c];
-        if (cell.empty() && columns[c] == "vehicle_altitude" && sc.config.seabed.type == SeabedParams::Type::kNone)
-          continue;  // documented: blank without a seabed
-        if (cell.empty() && columns[c] == "depth_setpoint" && !sc.autopilot.enabled)
-          continue;  // and without an autopilot
-        ASSERT_TRUE(std::isfinite(std::stod(cell))) << name << " row " << r << " column " << columns[c];
-      }
-      // The interval's extremes bracket the tension at the output time.
-      for (const auto& [value, lo, hi] : { std::tuple<int, int, int>{ 15, 26, 27 }, { 16, 28, 29 } })
-      {
-        const double v = std::stod(rows[r][static_cast<size_t>(value)]);
-        ASSERT_LE(std::stod(rows[r][static_cast<size_t>(lo)]), v) << name << " row " << r;
-        ASSERT_GE(std::stod(rows[r][static_cast<size_t>(hi)]), v) << name << " row " << r;
-      }
-    }
+    expectRowsFinite(name, sc, rows);
     // Tension is positive, the vehicle is under water, the lengths held: a step leaves a relative length
     // error (before projection) of the order of the stepper's tolerance.
     const NumericsParams& num = sc.config.numerics;
@@ -213,17 +239,7 @@ TEST(Batch, EveryScenarioRunsAndWritesTheDocumentedColumns)
     const Scenario again = loadScenarioFile(out + "/scenario.yaml");
     EXPECT_EQ(again.duration, sc.duration);
     EXPECT_EQ(again.manoeuvres.size(), sc.manoeuvres.size());
-    // Plots.
-    const std::string plot_log =
-        run(std::string("/usr/bin/python3 ") + TOW_SIM_SOURCE_DIR + "/scripts/tow_sim_plot " + out, &status);
-    ASSERT_EQ(status, 0) << plot_log;
-    for (const char* png : { "depth_diversion.png", "tensions.png", "plan_view.png", "side_view.png" })
-      EXPECT_GT(fileSize(out + "/" + png), 5000) << name << " " << png;
-    EXPECT_EQ(fileSize(out + "/winch.png") > 5000, sc.config.winch.enabled) << name;
-    EXPECT_EQ(fileSize(out + "/seabed.png") > 5000, sc.config.seabed.type != SeabedParams::Type::kNone) << name;
-    const bool heaves = sc.config.environment.waves.type != WaveParams::Type::kNone || !sc.motion_file.empty();
-    EXPECT_EQ(fileSize(out + "/waves.png") > 5000, heaves) << name;
-    EXPECT_EQ(fileSize(out + "/snaps.png") > 5000, sc.config.cable.elastic()) << name;
+    expectPlots(name, sc, out);
   }
 }
 

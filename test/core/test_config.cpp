@@ -35,6 +35,38 @@ void expectSameTable(const AngleTable& a, const AngleTable& b)
   }
 }
 
+void expectSameVehicle(const VehicleParams& v, const VehicleParams& w)
+{
+  EXPECT_EQ(v.tail_from_bail, w.tail_from_bail);
+  EXPECT_EQ(v.cg_from_bail, w.cg_from_bail);
+  EXPECT_EQ(v.horizontal_fin_from_bail, w.horizontal_fin_from_bail);
+  EXPECT_EQ(v.vertical_fin_from_bail, w.vertical_fin_from_bail);
+  EXPECT_EQ(v.nose_from_bail, w.nose_from_bail);
+  EXPECT_EQ(v.cb_from_bail, w.cb_from_bail);
+  EXPECT_EQ(v.mass, w.mass);
+  EXPECT_EQ(v.displaced_volume, w.displaced_volume);
+  EXPECT_EQ(v.inertia_B, w.inertia_B);
+  EXPECT_EQ(v.c1, w.c1);
+  EXPECT_EQ(v.c2, w.c2);
+  EXPECT_EQ(v.added_mass_approach, w.added_mass_approach);
+  EXPECT_EQ(v.added_mass_a, w.added_mass_a);
+  EXPECT_EQ(v.added_mass_b, w.added_mass_b);
+  EXPECT_EQ(v.prolate_spheroid.has_value(), w.prolate_spheroid.has_value());
+  EXPECT_EQ(v.munk_terms, w.munk_terms);
+  EXPECT_EQ(v.max_thrust, w.max_thrust);
+  EXPECT_EQ(v.thrust_offset_z, w.thrust_offset_z);
+  for (const auto& pair : { std::make_pair(&v.rudder, &w.rudder), std::make_pair(&v.elevator, &w.elevator) })
+  {
+    EXPECT_EQ(pair.first->lift_constant, pair.second->lift_constant);
+    EXPECT_EQ(pair.first->drag_constant, pair.second->drag_constant);
+    EXPECT_EQ(pair.first->max_deflection, pair.second->max_deflection);
+    EXPECT_EQ(pair.first->max_rate, pair.second->max_rate);
+    EXPECT_EQ(pair.first->center_of_pressure_offset, pair.second->center_of_pressure_offset);
+    expectSameTable(pair.first->lift, pair.second->lift);
+    expectSameTable(pair.first->drag, pair.second->drag);
+  }
+}
+
 void expectSame(const SimulationConfig& a, const SimulationConfig& b)
 {
   EXPECT_EQ(YAML::Dump(toYaml(a)).size() > 0, true);
@@ -90,35 +122,7 @@ void expectSame(const SimulationConfig& a, const SimulationConfig& b)
   EXPECT_EQ(a.numerics.max_step, b.numerics.max_step);
   EXPECT_EQ(a.numerics.fixed_step, b.numerics.fixed_step);
   EXPECT_EQ(a.numerics.tangential_smoothing_speed, b.numerics.tangential_smoothing_speed);
-  const VehicleParams &v = a.vehicle, &w = b.vehicle;
-  EXPECT_EQ(v.tail_from_bail, w.tail_from_bail);
-  EXPECT_EQ(v.cg_from_bail, w.cg_from_bail);
-  EXPECT_EQ(v.horizontal_fin_from_bail, w.horizontal_fin_from_bail);
-  EXPECT_EQ(v.vertical_fin_from_bail, w.vertical_fin_from_bail);
-  EXPECT_EQ(v.nose_from_bail, w.nose_from_bail);
-  EXPECT_EQ(v.cb_from_bail, w.cb_from_bail);
-  EXPECT_EQ(v.mass, w.mass);
-  EXPECT_EQ(v.displaced_volume, w.displaced_volume);
-  EXPECT_EQ(v.inertia_B, w.inertia_B);
-  EXPECT_EQ(v.c1, w.c1);
-  EXPECT_EQ(v.c2, w.c2);
-  EXPECT_EQ(v.added_mass_approach, w.added_mass_approach);
-  EXPECT_EQ(v.added_mass_a, w.added_mass_a);
-  EXPECT_EQ(v.added_mass_b, w.added_mass_b);
-  EXPECT_EQ(v.prolate_spheroid.has_value(), w.prolate_spheroid.has_value());
-  EXPECT_EQ(v.munk_terms, w.munk_terms);
-  EXPECT_EQ(v.max_thrust, w.max_thrust);
-  EXPECT_EQ(v.thrust_offset_z, w.thrust_offset_z);
-  for (const auto& pair : { std::make_pair(&v.rudder, &w.rudder), std::make_pair(&v.elevator, &w.elevator) })
-  {
-    EXPECT_EQ(pair.first->lift_constant, pair.second->lift_constant);
-    EXPECT_EQ(pair.first->drag_constant, pair.second->drag_constant);
-    EXPECT_EQ(pair.first->max_deflection, pair.second->max_deflection);
-    EXPECT_EQ(pair.first->max_rate, pair.second->max_rate);
-    EXPECT_EQ(pair.first->center_of_pressure_offset, pair.second->center_of_pressure_offset);
-    expectSameTable(pair.first->lift, pair.second->lift);
-    expectSameTable(pair.first->drag, pair.second->drag);
-  }
+  expectSameVehicle(a.vehicle, b.vehicle);
 }
 
 TEST(Config, ShippedFileDocumentsTheBuiltInDefaults)

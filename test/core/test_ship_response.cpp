@@ -249,37 +249,46 @@ TEST(ShipResponse, AnRaoFileIsReadAsAFullGridAndBadOnesAreRefusedByLine)
   EXPECT_THROW(RaoTable::fromCsvFile("/nonexistent/rao.csv"), std::invalid_argument);
 }
 
+// A measured motion: heave, roll, pitch, a steady heading and speed.
+ShipRigidMotion measuredMotion(double t)
+{
+  ShipRigidMotion m;
+  m.p_W = Eigen::Vector3d(2.0 * t, 0.0, 1.5 * std::sin(0.8 * t));
+  m.roll = 0.1 * std::sin(0.5 * t);
+  m.pitch = 0.05 * std::cos(0.6 * t);
+  m.yaw = 0.3;
+  return m;
+}
+
+// measuredMotion sampled at 10 Hz for 70 s, written as a motion file; returns its path.
+std::string measuredMotionFile()
+{
+  std::string text = "t,x,y,z,roll,pitch,yaw\n";
+  char row[256];
+  for (int i = 0; i <= 700; ++i)
+  {
+    const double t = 0.1 * i;
+    const ShipRigidMotion m = measuredMotion(t);
+    std::snprintf(row, sizeof row, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", t, m.p_W.x(), m.p_W.y(), m.p_W.z(),
+                  m.roll, m.pitch, m.yaw);
+    text += row;
+  }
+  return writeTempFile("tow_sim_motion.csv", text);
+}
+
 // A measured motion (heave, roll, pitch, a steady heading and speed) sampled at 10 Hz and replayed: the tow
 // point between the samples is the lever arm of the motion to within the interpolation's error, and its
 // acceleration is continuous across the samples and close to the motion's own.
 TEST(ShipResponse, AMeasuredMotionFileIsReplayedWithContinuousAcceleration)
 {
   const Eigen::Vector3d r_S(-20.0, 0.0, 2.0);
-  auto motion = [](double t)
-  {
-    ShipRigidMotion m;
-    m.p_W = Eigen::Vector3d(2.0 * t, 0.0, 1.5 * std::sin(0.8 * t));
-    m.roll = 0.1 * std::sin(0.5 * t);
-    m.pitch = 0.05 * std::cos(0.6 * t);
-    m.yaw = 0.3;
-    return m;
-  };
+  const auto motion = measuredMotion;
   auto lever = [&](double t)
   {
     const ShipRigidMotion m = motion(t);
     return Eigen::Vector3d(m.p_W + rotZ(m.yaw) * rotY(m.pitch) * rotX(m.roll) * r_S);
   };
-  std::string text = "t,x,y,z,roll,pitch,yaw\n";
-  char row[256];
-  for (int i = 0; i <= 700; ++i)
-  {
-    const double t = 0.1 * i;
-    const ShipRigidMotion m = motion(t);
-    std::snprintf(row, sizeof row, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", t, m.p_W.x(), m.p_W.y(), m.p_W.z(),
-                  m.roll, m.pitch, m.yaw);
-    text += row;
-  }
-  const std::string file = writeTempFile("tow_sim_motion.csv", text);
+  const std::string file = measuredMotionFile();
   const Scenario sc =
       loadScenario(YAML::Load("ship: {tow_point: [-20, 0, 2], motion_file: " + file + "}\nsimulation: {duration: 60}"));
   ASSERT_EQ(sc.motion.size(), 701u);
@@ -309,7 +318,13 @@ TEST(ShipResponse, AMeasuredMotionFileIsReplayedWithContinuousAcceleration)
   EXPECT_NEAR(path.pose(20.0).roll, motion(20.0).roll, 1e-9);
   // Written back (the batch runner's scenario.yaml) it reads again: the file, no manoeuvres.
   EXPECT_EQ(loadScenario(toYaml(sc)).motion.size(), 701u);
+}
 
+// A motion file that cannot be replayed is refused by name: beside manoeuvres, too short, times not
+// increasing or too close; and calm water needs no RAOs.
+TEST(ShipResponse, ABadMotionFileIsRefusedByName)
+{
+  const std::string file = measuredMotionFile();
   auto error = [](const std::string& yaml)
   {
     try

@@ -132,6 +132,33 @@ int freePort()
   return std::atoi(out.c_str());
 }
 
+// Starts a Dask scheduler on the loopback port and two single-threaded workers in `dir`, and waits (up to a
+// minute) until both are registered; returns the last check's output.
+std::string startDaskCluster(const std::string& dir, int port)
+{
+  const std::string address = "tcp://127.0.0.1:" + std::to_string(port);
+  std::system(("cd " + dir + " && (setsid dask-scheduler --host 127.0.0.1 --port " + std::to_string(port) +
+               " --no-dashboard > scheduler.log 2>&1 &)")
+                  .c_str());
+  for (int w = 0; w < 2; ++w)
+    std::system(("cd " + dir + " && (setsid dask-worker " + address +
+                 " --nworkers 1 --nthreads 1 --no-dashboard --no-nanny --host 127.0.0.1 > worker" + std::to_string(w) +
+                 ".log 2>&1 &)")
+                    .c_str());
+  std::string check;
+  int status = 0;
+  for (int attempt = 0; attempt < 60; ++attempt)
+  {
+    check = run("/usr/bin/python3 -c \"from distributed import Client; c = Client('" + address +
+                    "', timeout=5); print(len(c.scheduler_info()['workers']))\"",
+                &status);
+    if (status == 0 && lastNumber(check) >= 2)
+      break;
+    sleep(1);
+  }
+  return check;
+}
+
 TEST(Sweep, LocalAndDaskRunsGiveTheSameSummaryAndFailuresAreReported)
 {
   const std::string dir = tempFolder();
@@ -179,25 +206,7 @@ TEST(Sweep, LocalAndDaskRunsGiveTheSameSummaryAndFailuresAreReported)
   const int port = freePort();
   ASSERT_GT(port, 0);
   const std::string address = "tcp://127.0.0.1:" + std::to_string(port);
-  std::system(("cd " + dir + " && (setsid dask-scheduler --host 127.0.0.1 --port " + std::to_string(port) +
-               " --no-dashboard > scheduler.log 2>&1 &)")
-                  .c_str());
-  for (int w = 0; w < 2; ++w)
-    std::system(("cd " + dir + " && (setsid dask-worker " + address +
-                 " --nworkers 1 --nthreads 1 --no-dashboard --no-nanny --host 127.0.0.1 > worker" + std::to_string(w) +
-                 ".log 2>&1 &)")
-                    .c_str());
-  // Wait until both workers are registered.
-  std::string check;
-  for (int attempt = 0; attempt < 60; ++attempt)
-  {
-    check = run("/usr/bin/python3 -c \"from distributed import Client; c = Client('" + address +
-                    "', timeout=5); print(len(c.scheduler_info()['workers']))\"",
-                &status);
-    if (status == 0 && lastNumber(check) >= 2)
-      break;
-    sleep(1);
-  }
+  const std::string check = startDaskCluster(dir, port);
   const std::string dask = run(
       kSweep + " " + dir + "/sweep.yaml --out " + dir + "/dask --scheduler " + address + " --batch " + kBatch, &status);
   // ([d]: the pattern must not match the shell that runs pkill.)
