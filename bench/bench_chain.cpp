@@ -6,8 +6,8 @@
 #include <memory>
 
 #include "core/dense_reference.h"
-#include "tow_sim/core/chain_solver.h"
-#include "tow_sim/core/simulator.h"
+#include "tow_sim/core/chain/chain_solver.h"
+#include "tow_sim/core/integration/simulator.h"
 
 namespace
 {

@@ -7,8 +7,8 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "tow_sim/core/odometry_check.h"
-#include "tow_sim/core/vehicle.h"
+#include "tow_sim/core/run/odometry_check.h"
+#include "tow_sim/core/vehicle/vehicle.h"
 
 namespace
 {

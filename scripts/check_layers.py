@@ -76,9 +76,10 @@ def check(repo):
             problems.append(f"{name}:1: {name.stem} has no layer in scripts/check_layers.py (LAYERS or SOURCES)")
             continue
         for line, target in includes:
-            if target.startswith("core/") and LAYER.get(target[5:], len(LAYERS)) > LAYER[own]:
+            stem = target.rsplit("/", 1)[-1]  # core/<folder>/<stem>
+            if target.startswith("core/") and LAYER.get(stem, len(LAYERS)) > LAYER[own]:
                 problems.append(f"{name}:{line}: core/{own} (layer {LAYER[own]}) includes {target}.h "
-                                f"(layer {LAYER.get(target[5:], 'none')}), up the layer order")
+                                f"(layer {LAYER.get(stem, 'none')}), up the layer order")
     return files, problems
 
 

@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "tow_sim/core/saved_state.h"
+#include "tow_sim/core/io/saved_state.h"
 #include "tow_sim/scenario/batch_run.h"
 
 namespace

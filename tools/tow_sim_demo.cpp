@@ -10,7 +10,7 @@
 #include <memory>
 
 #include "tow_sim/core/constants.h"
-#include "tow_sim/core/tow_run.h"
+#include "tow_sim/core/run/tow_run.h"
 #include "tow_sim/scenario/ship_path.h"
 
 namespace

@@ -5,9 +5,9 @@
 #include <vector>
 
 #include "tow_sim/config/param_yaml.h"
+#include "tow_sim/core/environment/seabed.h"
 #include "tow_sim/core/param_tables.h"
-#include "tow_sim/core/seabed.h"
-#include "tow_sim/core/vehicle.h"
+#include "tow_sim/core/vehicle/vehicle.h"
 
 namespace tow_sim
 {

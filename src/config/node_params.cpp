@@ -3,8 +3,8 @@
 #include <stdexcept>
 
 #include "tow_sim/core/constants.h"
-#include "tow_sim/core/depth_autopilot.h"
 #include "tow_sim/core/param_tables.h"
+#include "tow_sim/core/run/depth_autopilot.h"
 
 namespace tow_sim
 {

@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "tow_sim/config/config.h"
-#include "tow_sim/core/ship_response.h"
+#include "tow_sim/core/environment/ship_response.h"
 #include "tow_sim/ros/conversions.h"
 #include "tow_sim/scenario/scripted_ship.h"
 

@@ -10,7 +10,7 @@
 #include "tow_sim/CableState.h"
 #include "tow_sim/FinLoads.h"
 #include "tow_sim/core/constants.h"
-#include "tow_sim/core/odometry_check.h"
+#include "tow_sim/core/run/odometry_check.h"
 #include "tow_sim/ros/conversions.h"
 #include "tow_sim/ros/markers.h"
 

@@ -4,7 +4,7 @@
 #include <exception>
 #include <string>
 
-#include "tow_sim/core/saved_state.h"
+#include "tow_sim/core/io/saved_state.h"
 #include "tow_sim/ros/tow_sim_node.h"
 
 namespace tow_sim

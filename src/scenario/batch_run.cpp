@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "tow_sim/core/constants.h"
-#include "tow_sim/core/saved_state.h"
+#include "tow_sim/core/io/saved_state.h"
 #include "tow_sim/scenario/ship_path.h"
 #include "tow_sim/scenario/towing_chart.h"
 

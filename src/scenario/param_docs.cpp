@@ -12,9 +12,9 @@
 #include "tow_sim/config/config.h"
 #include "tow_sim/config/node_params.h"
 #include "tow_sim/core/constants.h"
+#include "tow_sim/core/environment/seabed.h"
 #include "tow_sim/core/param_tables.h"
-#include "tow_sim/core/seabed.h"
-#include "tow_sim/core/vehicle.h"
+#include "tow_sim/core/vehicle/vehicle.h"
 #include "tow_sim/scenario/scenario_tables.h"
 
 namespace tow_sim

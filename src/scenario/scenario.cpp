@@ -7,8 +7,8 @@
 
 #include "tow_sim/config/param_yaml.h"
 #include "tow_sim/core/constants.h"
-#include "tow_sim/core/depth_autopilot.h"
 #include "tow_sim/core/param_tables.h"
+#include "tow_sim/core/run/depth_autopilot.h"
 #include "tow_sim/scenario/scenario_tables.h"
 
 namespace tow_sim

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "tow_sim/core/numeric_csv.h"
+#include "tow_sim/core/io/numeric_csv.h"
 
 namespace tow_sim
 {

@@ -7,8 +7,8 @@
 #include <stdexcept>
 
 #include "tow_sim/core/constants.h"
-#include "tow_sim/core/numeric_csv.h"
-#include "tow_sim/core/ship_response.h"
+#include "tow_sim/core/environment/ship_response.h"
+#include "tow_sim/core/io/numeric_csv.h"
 #include "tow_sim/scenario/scripted_ship.h"
 
 namespace tow_sim

@@ -5,7 +5,7 @@
 #include <memory>
 
 #include "tow_sim/core/constants.h"
-#include "tow_sim/core/simulator.h"
+#include "tow_sim/core/integration/simulator.h"
 
 namespace tow_sim
 {

@@ -7,7 +7,7 @@
 
 #include <Eigen/Core>
 
-#include "tow_sim/core/chain_model.h"
+#include "tow_sim/core/chain/chain_model.h"
 
 namespace tow_sim
 {

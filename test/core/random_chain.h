@@ -7,8 +7,8 @@
 #include <memory>
 #include <random>
 
-#include "tow_sim/core/chain_model.h"
-#include "tow_sim/core/vehicle.h"
+#include "tow_sim/core/chain/chain_model.h"
+#include "tow_sim/core/vehicle/vehicle.h"
 
 namespace tow_sim
 {

@@ -13,7 +13,7 @@
 #include <string>
 
 #include "tow_sim/core/constants.h"
-#include "tow_sim/core/tow_run.h"
+#include "tow_sim/core/run/tow_run.h"
 
 namespace tow_sim
 {

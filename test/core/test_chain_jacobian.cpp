@@ -10,7 +10,7 @@
 #include <random>
 
 #include "core/random_chain.h"
-#include "tow_sim/core/chain_jacobian.h"
+#include "tow_sim/core/chain/chain_jacobian.h"
 #include "tow_sim/core/geometry.h"
 
 namespace tow_sim

@@ -24,8 +24,8 @@
 
 #include "chain_fixtures.h"
 #include "core/dense_reference.h"
-#include "tow_sim/core/chain_jacobian.h"
-#include "tow_sim/core/chain_solver.h"
+#include "tow_sim/core/chain/chain_jacobian.h"
+#include "tow_sim/core/chain/chain_solver.h"
 #include "tow_sim/core/constants.h"
 
 namespace tow_sim

@@ -10,7 +10,7 @@
 #include <string>
 
 #include "tow_sim/core/constants.h"
-#include "tow_sim/core/depth_autopilot.h"
+#include "tow_sim/core/run/depth_autopilot.h"
 
 namespace
 {

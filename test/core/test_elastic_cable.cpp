@@ -19,7 +19,7 @@
 #include "core/chain_fixtures.h"
 #include "tow_sim/config/config.h"
 #include "tow_sim/core/constants.h"
-#include "tow_sim/core/seabed.h"
+#include "tow_sim/core/environment/seabed.h"
 #include "tow_sim/scenario/batch_run.h"
 #include "tow_sim/scenario/scenario.h"
 

@@ -10,11 +10,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tow_sim/core/chain/element.h"
 #include "tow_sim/core/constants.h"
-#include "tow_sim/core/element.h"
-#include "tow_sim/core/fins.h"
 #include "tow_sim/core/params.h"
-#include "tow_sim/core/vehicle.h"
+#include "tow_sim/core/vehicle/fins.h"
+#include "tow_sim/core/vehicle/vehicle.h"
 
 namespace tow_sim
 {

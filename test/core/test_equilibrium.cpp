@@ -7,9 +7,9 @@
 #include <cstdio>
 
 #include "core/chain_fixtures.h"
+#include "tow_sim/core/analysis/equilibrium.h"
 #include "tow_sim/core/constants.h"
-#include "tow_sim/core/equilibrium.h"
-#include "tow_sim/core/vehicle.h"
+#include "tow_sim/core/vehicle/vehicle.h"
 
 namespace tow_sim
 {

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "chain_fixtures.h"
-#include "tow_sim/core/chain_solver.h"
+#include "tow_sim/core/chain/chain_solver.h"
 #include "tow_sim/core/constants.h"
 
 namespace tow_sim

@@ -10,9 +10,9 @@
 #include <random>
 #include <string>
 
+#include "tow_sim/core/analysis/equilibrium.h"
 #include "tow_sim/core/constants.h"
-#include "tow_sim/core/equilibrium.h"
-#include "tow_sim/core/vehicle.h"
+#include "tow_sim/core/vehicle/vehicle.h"
 #include "tow_sim/scenario/scenario.h"
 #include "tow_sim/scenario/ship_path.h"
 

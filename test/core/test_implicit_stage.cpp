@@ -12,10 +12,10 @@
 #include <random>
 
 #include "core/random_chain.h"
-#include "tow_sim/core/chain_jacobian.h"
-#include "tow_sim/core/chain_solver.h"
-#include "tow_sim/core/implicit_stepper.h"
-#include "tow_sim/core/simulator.h"
+#include "tow_sim/core/chain/chain_jacobian.h"
+#include "tow_sim/core/chain/chain_solver.h"
+#include "tow_sim/core/integration/implicit_stepper.h"
+#include "tow_sim/core/integration/simulator.h"
 
 namespace tow_sim
 {

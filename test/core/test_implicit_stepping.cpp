@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "tow_sim/core/tow_run.h"
+#include "tow_sim/core/run/tow_run.h"
 #include "tow_sim/scenario/scenario.h"
 #include "tow_sim/scenario/ship_path.h"
 

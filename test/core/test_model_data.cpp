@@ -6,9 +6,9 @@
 #include <cstring>
 #include <random>
 
-#include "tow_sim/core/equilibrium.h"
-#include "tow_sim/core/simulator.h"
-#include "tow_sim/core/vehicle.h"
+#include "tow_sim/core/analysis/equilibrium.h"
+#include "tow_sim/core/integration/simulator.h"
+#include "tow_sim/core/vehicle/vehicle.h"
 
 namespace tow_sim
 {

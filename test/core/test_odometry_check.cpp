@@ -5,7 +5,7 @@
 #include <limits>
 
 #include "tow_sim/core/constants.h"
-#include "tow_sim/core/odometry_check.h"
+#include "tow_sim/core/run/odometry_check.h"
 
 namespace tow_sim
 {

@@ -8,7 +8,7 @@
 #include <cmath>
 
 #include "chain_fixtures.h"
-#include "tow_sim/core/chain_solver.h"
+#include "tow_sim/core/chain/chain_solver.h"
 
 namespace tow_sim
 {

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "tow_sim/core/rosenbrock_tableau.h"
+#include "tow_sim/core/integration/rosenbrock_tableau.h"
 
 namespace tow_sim
 {

@@ -17,7 +17,7 @@
 
 #include "temp_file.h"
 #include "tow_sim/core/constants.h"
-#include "tow_sim/core/saved_state.h"
+#include "tow_sim/core/io/saved_state.h"
 #include "tow_sim/scenario/batch_run.h"
 #include "tow_sim/scenario/scenario.h"
 #include "tow_sim/scenario/ship_path.h"

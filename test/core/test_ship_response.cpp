@@ -10,8 +10,8 @@
 
 #include "core/temp_file.h"
 #include "tow_sim/core/constants.h"
-#include "tow_sim/core/odometry_check.h"
-#include "tow_sim/core/ship_response.h"
+#include "tow_sim/core/environment/ship_response.h"
+#include "tow_sim/core/run/odometry_check.h"
 #include "tow_sim/scenario/scenario.h"
 #include "tow_sim/scenario/ship_path.h"
 

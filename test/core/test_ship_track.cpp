@@ -8,7 +8,7 @@
 #include <stdexcept>
 
 #include "tow_sim/core/constants.h"
-#include "tow_sim/core/ship_track.h"
+#include "tow_sim/core/run/ship_track.h"
 
 namespace tow_sim
 {

@@ -7,8 +7,8 @@
 #include "core/chain_fixtures.h"
 #include "core/dense_reference.h"
 #include "core/random_chain.h"
-#include "tow_sim/core/chain_solver.h"
-#include "tow_sim/core/vehicle.h"
+#include "tow_sim/core/chain/chain_solver.h"
+#include "tow_sim/core/vehicle/vehicle.h"
 
 namespace tow_sim
 {

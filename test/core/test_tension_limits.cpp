@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "tow_sim/core/tension_limits.h"
+#include "tow_sim/core/run/tension_limits.h"
 
 namespace tow_sim
 {

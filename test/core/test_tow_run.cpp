@@ -8,7 +8,7 @@
 #include <stdexcept>
 
 #include "tow_sim/core/constants.h"
-#include "tow_sim/core/tow_run.h"
+#include "tow_sim/core/run/tow_run.h"
 
 namespace tow_sim
 {

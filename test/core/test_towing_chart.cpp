@@ -11,7 +11,7 @@
 #include <sstream>
 
 #include "tow_sim/core/constants.h"
-#include "tow_sim/core/tow_run.h"
+#include "tow_sim/core/run/tow_run.h"
 #include "tow_sim/scenario/towing_chart.h"
 
 namespace tow_sim

@@ -3,7 +3,7 @@
 
 #include <stdexcept>
 
-#include "tow_sim/core/track_trail.h"
+#include "tow_sim/core/run/track_trail.h"
 
 namespace tow_sim
 {

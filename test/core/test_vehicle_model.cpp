@@ -8,10 +8,10 @@
 #include <random>
 
 #include "core/chain_fixtures.h"
-#include "tow_sim/core/added_mass.h"
-#include "tow_sim/core/chain_solver.h"
+#include "tow_sim/core/chain/chain_solver.h"
 #include "tow_sim/core/constants.h"
-#include "tow_sim/core/vehicle.h"
+#include "tow_sim/core/vehicle/added_mass.h"
+#include "tow_sim/core/vehicle/vehicle.h"
 
 namespace tow_sim
 {

@@ -8,9 +8,9 @@
 #include <memory>
 
 #include "core/chain_fixtures.h"
+#include "tow_sim/core/analysis/equilibrium.h"
 #include "tow_sim/core/constants.h"
-#include "tow_sim/core/equilibrium.h"
-#include "tow_sim/core/vehicle.h"
+#include "tow_sim/core/vehicle/vehicle.h"
 
 namespace tow_sim
 {

@@ -16,8 +16,8 @@
 #include "core/chain_fixtures.h"
 #include "tow_sim/config/config.h"
 #include "tow_sim/core/constants.h"
-#include "tow_sim/core/vehicle.h"
-#include "tow_sim/core/waves.h"
+#include "tow_sim/core/environment/waves.h"
+#include "tow_sim/core/vehicle/vehicle.h"
 #include "tow_sim/scenario/batch_run.h"
 #include "tow_sim/scenario/scenario.h"
 

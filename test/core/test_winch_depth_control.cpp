@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "tow_sim/core/depth_autopilot.h"
+#include "tow_sim/core/run/depth_autopilot.h"
 #include "tow_sim/scenario/batch_run.h"
 #include "tow_sim/scenario/scenario.h"
 #include "tow_sim/scenario/towing_chart.h"

@@ -18,7 +18,7 @@
 #include "tow_sim/CableState.h"
 #include "tow_sim/config/node_params.h"
 #include "tow_sim/core/constants.h"
-#include "tow_sim/core/tow_run.h"
+#include "tow_sim/core/run/tow_run.h"
 #include "tow_sim/ros/conversions.h"
 #include "tow_sim/ros/markers.h"
 

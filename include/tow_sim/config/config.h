@@ -6,7 +6,7 @@
 #include <yaml-cpp/yaml.h>
 #include <string>
 
-#include "tow_sim/core/simulation_config.h"
+#include "tow_sim/core/run/simulation_config.h"
 
 namespace tow_sim
 {

@@ -6,8 +6,8 @@
 #include <Eigen/Core>
 #include <string>
 
-#include "tow_sim/core/depth_autopilot.h"
 #include "tow_sim/core/param_table.h"
+#include "tow_sim/core/run/depth_autopilot.h"
 
 namespace tow_sim
 {

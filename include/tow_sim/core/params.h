@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "tow_sim/core/environment/waves.h"
 #include "tow_sim/core/param_table.h"
-#include "tow_sim/core/waves.h"
 
 namespace tow_sim
 {

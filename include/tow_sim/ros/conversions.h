@@ -22,7 +22,7 @@
 #include "tow_sim/CableState.h"
 #include "tow_sim/FinLoads.h"
 #include "tow_sim/config/param_yaml.h"
-#include "tow_sim/core/tow_run.h"
+#include "tow_sim/core/run/tow_run.h"
 
 namespace tow_sim
 {

@@ -20,7 +20,7 @@
 #include "tow_sim/DepthAutopilotConfig.h"
 #include "tow_sim/PlanCableOut.h"
 #include "tow_sim/config/node_params.h"
-#include "tow_sim/core/depth_autopilot.h"
+#include "tow_sim/core/run/depth_autopilot.h"
 
 namespace tow_sim
 {

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "tow_sim/core/tow_run.h"
-#include "tow_sim/core/track_trail.h"
+#include "tow_sim/core/run/tow_run.h"
+#include "tow_sim/core/run/track_trail.h"
 #include "tow_sim/ros/tow_sim_node.h"
 
 namespace tow_sim

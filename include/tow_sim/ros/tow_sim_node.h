@@ -29,11 +29,11 @@
 #include "tow_sim/TowSimConfig.h"
 #include "tow_sim/config/config.h"
 #include "tow_sim/config/node_params.h"
-#include "tow_sim/core/odometry_check.h"
-#include "tow_sim/core/ship_track.h"
-#include "tow_sim/core/tension_limits.h"
-#include "tow_sim/core/tow_run.h"
-#include "tow_sim/core/track_trail.h"
+#include "tow_sim/core/run/odometry_check.h"
+#include "tow_sim/core/run/ship_track.h"
+#include "tow_sim/core/run/tension_limits.h"
+#include "tow_sim/core/run/tow_run.h"
+#include "tow_sim/core/run/track_trail.h"
 
 namespace tow_sim
 {

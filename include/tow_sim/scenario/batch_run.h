@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "tow_sim/core/tow_run.h"
+#include "tow_sim/core/run/tow_run.h"
 #include "tow_sim/scenario/scenario.h"
 
 namespace tow_sim

@@ -12,9 +12,9 @@
 
 #include "tow_sim/config/config.h"
 #include "tow_sim/core/constants.h"
-#include "tow_sim/core/depth_autopilot.h"
-#include "tow_sim/core/ship_response.h"
-#include "tow_sim/core/tow_run.h"
+#include "tow_sim/core/environment/ship_response.h"
+#include "tow_sim/core/run/depth_autopilot.h"
+#include "tow_sim/core/run/tow_run.h"
 
 namespace tow_sim
 {

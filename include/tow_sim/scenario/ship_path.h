@@ -3,7 +3,7 @@
 // smoothly, so the tow point's acceleration is continuous. (Library tow_sim_scenario.)
 #pragma once
 
-#include "tow_sim/core/ship_track.h"
+#include "tow_sim/core/run/ship_track.h"
 #include "tow_sim/scenario/scenario.h"
 
 namespace tow_sim

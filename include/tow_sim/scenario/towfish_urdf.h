@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "tow_sim/core/vehicle.h"
+#include "tow_sim/core/vehicle/vehicle.h"
 
 namespace tow_sim
 {

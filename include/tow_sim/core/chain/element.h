@@ -1,0 +1,140 @@
+// One rigid element of the chain: a cable segment (lambda = 1..nu) or the end body (lambda = nu+1).
+// Every element is described to the solver the same way: its Newton-Euler equations about its CG in
+// world axes, M_body [a_G; dw/dt] = wrench + (tension forces and moments), with the accelerations of
+// its CG and its angular acceleration linear in the accelerations of its two joints (no roll).
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "tow_sim/core/params.h"
+#include "tow_sim/core/vehicle/fins.h"
+
+namespace tow_sim
+{
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
+using Vector6d = Eigen::Matrix<double, 6, 1>;
+
+// Element kinematics from its forward joint x_f (toward the ship) and aft joint x_a (Appendix A).
+struct ElementKinematics
+{
+  Eigen::Vector3d x_f, x_a, v_f, v_a;  // [m], [m/s] joints, world
+  Eigen::Vector3d s;                   // [-] s_lambda, unit axis from x_f to x_a
+  double length = 0.0;                 // [m] |x_a - x_f| (equals d_lambda up to the length error)
+  Eigen::Vector3d s_dot;               // [1/s] ds/dt
+  Eigen::Vector3d omega;               // [rad/s] s x ds/dt (no roll)
+
+  static ElementKinematics fromJoints(const Eigen::Vector3d& x_f, const Eigen::Vector3d& x_a,
+                                      const Eigen::Vector3d& v_f, const Eigen::Vector3d& v_a);
+  // A point a fraction eta of the way from x_f to x_a: position and velocity.
+  Eigen::Vector3d pointAt(double eta) const { return x_f + eta * (x_a - x_f); }
+  Eigen::Vector3d velocityAt(double eta) const { return v_f + eta * (v_a - v_f); }
+};
+
+// Newton-Euler description of one element about its CG, world axes.
+struct BodyDynamics
+{
+  Matrix6d mass;       // [kg, kg m, kg m^2] rigid-body plus added mass: [F; M] = mass [a_G; dw/dt]
+  Vector6d wrench;     // [N; N m] all loads but the joint tensions: force at the CG, moment about it
+  double cg_fraction;  // [-] gamma: the CG lies at x_f + gamma (x_a - x_f)
+};
+
+// Constant description of a uniform cable segment (physics.md §4).
+struct CableSegmentModel
+{
+  double length = 0.0;          // [m] d_lambda
+  double mass = 0.0;            // [kg] m_lambda = w d / g (mass in air)
+  double net_weight = 0.0;      // [N] (w - b) d, weight in water
+  double c1 = 0.0;              // [N s^2/m^3] tangential drag constant
+  double c2 = 0.0;              // [N s^2/m^3] normal drag constant
+  double added_mass = 0.0;      // [kg] e_lambda, Walton-Polachek, acts on the normal acceleration
+  double displaced_mass = 0.0;  // [kg] rho (pi D^2/4) d: the Froude-Krylov force of the waves' acceleration
+  TangentialDragModel tangential_model = TangentialDragModel::kPode;
+  double smoothing_speed = 0.01;  // [m/s] width of the smooth sign of u.s (Pode model)
+  bool stretches = false;         // elastic cable: the rotary inertia m d^2/12 at the actual length d
+
+  static CableSegmentModel fromParams(const CableParams& cable, const Environment& env, const NumericsParams& numerics);
+};
+
+// Velocity forces of a cylinder-like element through the water (Appendix D), evaluated at the element
+// centre: normal drag, tangential drag and the rotation-drag moment M_V. Returns force, adds moment.
+struct VelocityForces
+{
+  Eigen::Vector3d force;   // [N] at the element centre
+  Eigen::Vector3d moment;  // [N m] couple
+};
+VelocityForces velocityForces(const ElementKinematics& k, const Eigen::Vector3d& current_W, double c1, double c2,
+                              TangentialDragModel model, double smoothing_speed);
+
+// Derivatives of velocityForces at the same arguments (for the implicit stepper): with respect to the
+// centre's velocity through the water u and to the joints' relative velocity dv = v_a - v_f (through the
+// rotation w = s x dv / d), the axis held fixed.
+struct VelocityForceJacobian
+{
+  Eigen::Matrix3d force_u;    // [N s/m] d force / d u
+  Eigen::Matrix3d moment_u;   // [N s] d moment / d u
+  Eigen::Matrix3d moment_dv;  // [N s] d moment / d dv
+};
+VelocityForceJacobian velocityForceJacobian(const ElementKinematics& k, const Eigen::Vector3d& current_W, double c1,
+                                            double c2, TangentialDragModel model, double smoothing_speed);
+
+// The joint accelerations to the CG acceleration and angular acceleration of an element with axis s,
+// length d and CG fraction gamma (docs/solver.md (S1)): [a_G; dw/dt] = J_f a_f + J_a a_a. Returns
+// [J_f J_a] (6 x 6); its transpose projects a wrench at the CG onto the two joints (S5).
+Matrix6d jointMap(const Eigen::Vector3d& s, double length, double cg_fraction);
+
+// The load of the waves' acceleration a_w [m/s^2] on a closed body (physics.md §9), as a wrench at its CG:
+// the added mass acting on [a_w; 0] (the force and moment rows' translational blocks of its added-mass
+// matrix about the CG) plus the Froude-Krylov force rho V a_w at its centre of buoyancy r_cb from the CG.
+Vector6d waveInertiaWrench(const Eigen::Matrix3d& added_force, const Eigen::Matrix3d& added_moment,
+                           double displaced_mass, const Eigen::Vector3d& r_cb, const Eigen::Vector3d& a_w);
+
+// Cable segment at time t [s] (the waves move in time).
+void cableSegmentDynamics(const CableSegmentModel& seg, double t, const ElementKinematics& k, const Environment& env,
+                          BodyDynamics& out);
+
+// What an operator sets on the end body while it runs (the vehicle's fins and propeller); part of the
+// chain's mutable data, not of the model. A rigid end body has none and ignores them.
+struct Actuators
+{
+  FinServo rudder, elevator;  // rate-limited fin servos (their angles are known at any time)
+  double thrust = 0.0;        // [N] propeller thrust along x_b, saturated
+};
+
+// Element nu+1. Implementations: RigidEndElement here; the full towed vehicle plugs in the same way. An
+// end body is constant: whatever changes while running comes in as Actuators.
+class EndBody
+{
+public:
+  virtual ~EndBody() = default;
+  virtual double length() const = 0;  // [m] d_{nu+1}, bail to tail point
+  // Newton-Euler description at time t [s] (fin servos move in time) in the environment `env`.
+  virtual void dynamics(double t, const ElementKinematics& k, const Environment& env, const Actuators& actuators,
+                        BodyDynamics& out) const = 0;
+  // Points that touch the seabed, as fractions of the way from the bail (0) to the tail point (1);
+  // negative ahead of the bail. Default: the tail point (the bail is the cable's last joint).
+  virtual std::vector<double> contactFractions() const { return { 1.0 }; }
+  // The actuators at rest at time t [s]: fins centred (with this body's servo limits), no thrust.
+  virtual Actuators restingActuators(double t) const;
+  // Commands the actuators from time t [s] on; values beyond the limits saturate. Returns true when
+  // something saturated. Throws std::invalid_argument for a non-finite value or a body without actuators.
+  virtual bool command(Actuators& actuators, double t, double rudder, double elevator, double thrust) const;
+};
+
+// Axisymmetric rigid end body: weight at the CG, buoyancy at the CB, cable-like velocity forces and
+// Approach A added mass at the bail-tail midpoint.
+class RigidEndElement : public EndBody
+{
+public:
+  RigidEndElement(const EndElementParams& params, const NumericsParams& numerics);
+  double length() const override { return p_.length; }
+  void dynamics(double t, const ElementKinematics& k, const Environment& env, const Actuators& actuators,
+                BodyDynamics& out) const override;
+  const EndElementParams& params() const { return p_; }
+
+private:
+  EndElementParams p_;
+  double smoothing_speed_;
+};
+
+}  // namespace tow_sim

@@ -1,0 +1,79 @@
+// The linearly implicit step's stage solve (docs/solver.md §7). The Rosenbrock-W methods (ROS34PW2 by
+// default, ROS2; rosenbrock_tableau.h, whose stage loop is in simulator_implicit.cpp) solve each stage
+// with the same matrix W = I - gamma h J:
+//   W K_i = f(t + c_i h, y + h sum a_ij K_j) + sum c_ij K_j + gamma h K_t,i df/dt.
+// J is an approximation of the right-hand side's Jacobian taken once per step (a W-method keeps its order
+// with any J). Each stage solve (I - gamma h J) K = r costs O(nu): with K = (K_x, K_v) for the positions
+// and velocities, K_x = r_x + gamma h K_v, and K_v with the multipliers solves equations of the solver's
+// own form, element by element,
+//   N_ff K_f + N_fa K_a - g_f = T_fwd - mu s,  N_af K_f + N_aa K_a - g_a = -T_aft + mu s,  s.(K_a - K_f) = c',
+//   N = M - gamma h D - (gamma h)^2 K,  g = M r_v + gamma h K r_x,  c' = s.(r_v,a - r_v,f),
+// (M the projected inertia, D and K the load derivatives of chain_jacobian.h), so ChainSweep solves them:
+// the matrix pass once per step size, a vector pass per stage. The winch's cable out and rate form their
+// own 2 x 2 block.
+// The right-hand side depends on time through the tow point x_1, which moves as the ship says. The
+// method is applied to the autonomous system in (t, y): its stages then carry the time derivative of f,
+// W K_i = ... + gamma h K_t,i df/dt (K_t the time component of the stages, 1 in the first), and df/dt is
+// the response of the chain to the tow point moving at the ship's velocity and acceleration: the stage
+// takes the tow point's increments (K_t v, K_t a) as known joint values. Without them the tow point's
+// motion acts explicitly on the first element, the stiffest spring of a fine chain.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "tow_sim/core/chain/chain_jacobian.h"
+#include "tow_sim/core/chain/chain_solver.h"
+
+namespace tow_sim
+{
+// The tow point's increments in a stage: position and velocity rows.
+struct TowPointRates
+{
+  Eigen::Vector3d x = Eigen::Vector3d::Zero();
+  Eigen::Vector3d v = Eigen::Vector3d::Zero();
+};
+
+class ImplicitStepper
+{
+public:
+  static constexpr double kGamma = 1.7071067811865475;  // ROS2's, 1 + 1/sqrt(2): the default
+
+  // The method's gamma (rosenbrock_tableau.h); factor() must follow.
+  void setGamma(double gamma)
+  {
+    gamma_ = gamma;
+    h_ = 0.0;
+  }
+  double gamma() const { return gamma_; }
+
+  // The linearisation at a state: `terms`, `multipliers` and accelerations a of a ChainSolver::solve at it
+  // (the projected inertia, the axes, the axial forces), its joints x, v (3 x (nu+1)), the tow point's
+  // motion, and the
+  // winch's rate law's derivatives d(payout acceleration)/d(cable out) [1/s^2] and /d(rate) [1/s].
+  void linearise(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data, double t,
+                 const ShipEndState& ship, const Eigen::Ref<const Eigen::Matrix3Xd>& x,
+                 const Eigen::Ref<const Eigen::Matrix3Xd>& v, const Eigen::Ref<const Eigen::Matrix3Xd>& a,
+                 const std::vector<ElementTerms>& terms, const std::vector<double>& multipliers, double winch_d_length,
+                 double winch_d_rate);
+  // The stage matrix for the step h [s] and its matrix pass (after linearise; again after each change of h).
+  void factor(double h);
+  // K = (I - gamma h J)^-1 (r + gamma h df/dt-part) for r laid out as StateLayout with as many joints as
+  // the linearisation, the tow point's increments `tow` known (position, velocity: K_t (v, a)).
+  void solve(const std::vector<double>& r, const TowPointRates& tow, std::vector<double>& K);
+
+  double step() const { return h_; }  // [s] as factored
+  int joints() const { return static_cast<int>(jacobians_.size()); }
+
+private:
+  std::vector<ElementTerms> inertia_;       // M and s at the linearisation (their h, c unused)
+  std::vector<ElementJacobian> jacobians_;  // D and K per element
+  std::vector<ElementTerms> stage_;         // N, and per stage g and c'
+  ChainSweep sweep_;
+  Eigen::Matrix3Xd K_v_;
+  double h_ = 0.0;
+  double gamma_ = kGamma;
+  double winch_d_length_ = 0.0, winch_d_rate_ = 0.0;
+};
+
+}  // namespace tow_sim

@@ -1,0 +1,215 @@
+// Time integration of the chain (MoorDyn's Time / MuJoCo's mj_step role): Boost.Odeint steppers,
+// projection back onto the segment lengths after every step, and the outputs at the current state.
+// The core never reads a clock: the caller says up to which time to integrate.
+#pragma once
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cstddef>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "tow_sim/core/chain/chain_model.h"
+#include "tow_sim/core/chain/chain_solver.h"
+#include "tow_sim/core/chain/chain_state.h"
+#include "tow_sim/core/integration/implicit_stepper.h"
+#include "tow_sim/core/integration/rosenbrock_tableau.h"
+#include "tow_sim/core/integration/run_report.h"
+#include "tow_sim/core/vehicle/fins.h"
+
+namespace tow_sim
+{
+// Tow-point motion as a function of time [s] (position, velocity, acceleration, world).
+using ShipMotion = std::function<ShipEndState(double t)>;
+
+// A tow point moving with constant velocity: p(t) = p0 + v t.
+ShipMotion constantVelocityShip(const Eigen::Vector3d& p0_W, const Eigen::Vector3d& v_W);
+
+// What the simulator holds between steps (a saved state): enough to go on bit-identically. The model, the
+// ship and the environment (currents, the sea's clock) are the caller's, not part of it.
+struct SimulatorState
+{
+  double t = 0.0;         // [s]
+  double dt = 0.0;        // [s] the adaptive steppers' next step
+  int segments = 0;       // nu now (the winch changes it)
+  std::vector<double> y;  // StateLayout for segments + 1 joints
+  FinServo::State rudder, elevator;
+  double thrust = 0.0;         // [N] as saturated
+  double winch_command = 0.0;  // [m/s]
+  std::vector<char> slack;     // elastic cable: each segment slack (empty: none counted yet)
+};
+
+class Simulator
+{
+public:
+  using StateVector = std::vector<double>;  // laid out as StateLayout says
+
+  // The winch (validated against the model's cable) is off by default: the cable length is fixed. The
+  // chain starts with the model's initial data (its currents, the end body's actuators at rest at t = 0).
+  Simulator(std::shared_ptr<const ChainModel> model, ShipMotion ship, const WinchParams& winch = WinchParams());
+  ~Simulator();
+
+  // Restart at time t from the given state, projected onto the segment lengths. Throws
+  // std::invalid_argument for a wrong size or a non-finite value. The cable out and the layout are kept;
+  // the winch restarts from rest with its command cleared; the actuators are not touched.
+  void reset(double t, const ChainState& state);
+
+  // Integrate to t_end (>= time()). Throws std::runtime_error if the state stops being finite, a joint
+  // runs away (faster than 200 m/s relative to the tow point) or the step size collapses; the
+  // simulator then keeps the last good state.
+  StepReport advanceTo(double t_end);
+
+  // Takes the layout of a saved state (or a test's): nu segments and the cable out [m] (the first segment
+  // gets the rest). A reset() with as many joints must follow. Throws std::invalid_argument for a layout
+  // the cable cannot have (no segment or more than 100000, a first segment not longer than 0, cable out
+  // beyond the winch's limits while it is enabled, or other than the configured cable without the winch).
+  void restoreLayout(int segments, double cable_out);
+
+  // The state now, and back: restoreState() takes the layout (as restoreLayout, whose errors it throws), the
+  // state vector, time, step and actuators as they were, without projecting, so that advancing from it is
+  // bit-identical to advancing from where it was taken. Throws std::invalid_argument (naming the field) for a
+  // state of the wrong size or with a non-finite value; nothing changes then.
+  SimulatorState saveState() const;
+  void restoreState(const SimulatorState& state);
+
+  // The cable parted (cable.break_at_breaking_load, or part()): the chain is the vehicle side, from a free
+  // first joint; the winch is stopped, and the steppers are explicit (dopri5; rk4 if configured).
+  bool parted() const { return free_; }
+  // Where and when it parted at its breaking load (checkBreak; kept until rejoin() or restoreState(), so an
+  // advance that throws after it does not lose it). Empty after a part() by hand.
+  const std::optional<PartingEvent>& partingEvent() const { return parting_event_; }
+  // The cable left on the ship after a parting at joint j > 1 (j - 1 segments, its last joint free, no end
+  // body: docs/solver.md §10): its joints from the tow point (empty: none) and the force on each segment at
+  // its forward joint [N]. shipTension() is |T_1| of whichever chain hangs from the ship (0: none).
+  Eigen::Matrix3Xd shipSideJoints() const;
+  const Eigen::Matrix3Xd& shipSideTensions() const { return ship_side_tensions_; }
+  double shipTension() const;
+  // Parts the cable now at element e's forward joint (0: the tow point .. nu: the bail): the elements
+  // forward of it leave the simulation, the joint's position and velocity become the free end's. Throws
+  // std::logic_error if already parted, std::out_of_range for another e.
+  void part(int element);
+  // The whole cable again, laid out as configured (the winch's cable out as configured too): a reset() must
+  // follow. Nothing happens to a cable that has not parted.
+  void rejoin();
+
+  // The right-hand side dy/dt at (t, y) for the current data: no side effect (only the solver's
+  // workspace changes), so equal arguments give bit-identical results whatever was evaluated before.
+  void derivative(double t, const StateVector& y, StateVector& dydt) const;
+
+  // The data that changes while running. Commands act from time(); the currents are validated first
+  // (std::invalid_argument naming the field).
+  const ChainData& data() const { return data_; }
+  bool command(double rudder, double elevator, double thrust);              // true if something saturated
+  bool commandAt(double t, double rudder, double elevator, double thrust);  // from time t [s] (a restart)
+  void resetActuators(double t);                                            // fins centred, no thrust, from time t [s]
+  void setCurrent(const Eigen::Vector3d& current_W);
+  void setCurrentProfile(const std::vector<CurrentSample>& profile);
+  void setWaveTime(double wave_time) { tow_sim::setWaveTime(data_, wave_time); }
+
+  // Winch: the commanded payout rate [m/s] (positive pays out), saturated at +-max_rate (returned).
+  // Throws std::invalid_argument if it is not finite or the winch is disabled. The rate follows the
+  // command with the winch's response time, within max_acceleration, and slows down so as to stop at
+  // min_length and max_length.
+  double setWinchCommand(double payout_rate);
+  double winchCommand() const { return data_.winch_command; }
+  double cableLength() const;  // [m] cable out
+  double payoutRate() const;   // [m/s] its rate of change now
+  const WinchParams& winch() const { return winch_; }
+
+  double time() const { return t_; }
+  // [s] the step the stepper takes next if nothing cuts it short: the fixed step, or the adaptive
+  // steppers' proposal (at most max_step).
+  double nextStep() const;
+  ChainState state() const;
+  const StateVector& stateVector() const { return y_; }         // the integrator's state, StateLayout
+  ShipEndState shipEnd() const { return ship_(t_); }            // the ship's tow point, parted or not
+  ShipEndState firstJoint() const { return towPoint(t_, y_); }  // x_1: the tow point, or the free end once parted
+  // The element lengths now (the winch changes the layout): geometry().segments is nu now.
+  const ChainGeometry& geometry() const { return data_.geometry; }
+  // Joints x_1 .. x_{nu+2} (3 x (nu+2)) with the tow point first.
+  Eigen::Matrix3Xd jointPositions() const;
+  // T_1 .. T_{nu+1} at the current state (force on element lambda at its forward joint) [N].
+  const Eigen::Matrix3Xd& tensions() const { return tensions_; }
+  // Joint accelerations x_2 .. x_{nu+2} at the current state [m/s^2].
+  const Eigen::Matrix3Xd& accelerations() const { return accelerations_; }
+  // Current relative length error (after projection): the end body's alone for an elastic cable.
+  double lengthError() const;
+  // Each element's axial multiplier mu at the current state [N], compression positive: an elastic
+  // segment's is minus its tension (0 when slack).
+  const std::vector<double>& axialMultipliers() const { return multipliers_; }
+  // Kinematics of element e (0 .. nu) at the current state; e = nu is the vehicle.
+  ElementKinematics elementKinematics(int e) const;
+
+  const ChainModel& model() const { return *model_; }
+
+private:
+  StateLayout layout() const
+  {
+    return StateLayout{ data_.geometry.jointCount(), free_, free_ ? ship_side_.segments : 0 };
+  }
+  // The chain's first joint at (t, y): the ship's tow point, or the free end of a parted cable (its
+  // acceleration unknown: 0 here).
+  ShipEndState towPoint(double t, const StateVector& y) const;
+  StepperType stepper() const;          // the configured one, explicit once parted
+  void checkBreak(StepReport& report);  // parts the cable where a tension exceeds breaking_load
+  // The element lengths for the state y at time t: the first segment from the cable out, its rates from
+  // the winch law (the model's as configured while the winch is off).
+  ChainGeometry geometryOf(const StateVector& y) const;
+  bool remesh(double t);  // split or merge the first segment
+  // Segments of the first section now (the winch's: the sections aft of it keep theirs).
+  int firstSectionSegments() const { return data_.geometry.segments - data_.geometry.aftSectionSegments(); }
+  void splitFirstSegment(double t);
+  void mergeFirstSegment();
+  void project(double t);
+  void refreshOutputs();
+  void stepOnce(double t_end, double winch_step, StepReport& report);  // one accepted or rejected step
+  void acceptStep(StepReport& report);  // after an accepted step: re-mesh, project, outputs, snaps, parting
+  // The implicit stepper's step: false when rejected (dt_ then holds the step to try next).
+  bool stepImplicit(double t_end, double winch_step, StepReport& report);
+  void implicitStages(double h);  // y_next_ and error_ of the step h (factored)
+  bool implicit() const;          // numerics.stepper is implicit or implicit_fixed
+  double errorNorm(const StateVector& error, const StateVector& y_next, double t_next) const;  // weighted RMS
+  void linearise();                             // the implicit stepper's J at the current state (after refreshOutputs)
+  double largestRelativeSpeed(double t) const;  // [m/s] fastest joint relative to the tow point
+
+  static constexpr double kMinStep = 1e-10;  // [s] smallest adaptive step before the integration fails
+
+  struct Steppers;  // Boost.Odeint's, sized for the state (re-made when the winch re-meshes)
+  std::shared_ptr<const ChainModel> model_;
+  ShipMotion ship_;
+  std::unique_ptr<Steppers> steppers_;
+  mutable ChainSolver solver_;  // workspace only
+  WinchParams winch_;
+  ChainData data_;
+  double t_ = 0.0;
+  double dt_ = 0.0;  // next adaptive step
+  StateVector y_;    // StateLayout
+  StateVector dydt_;
+  Eigen::Matrix3Xd tensions_, accelerations_;
+  std::vector<double> multipliers_;  // each element's axial multiplier at the current state [N]
+  std::vector<char> slack_;          // elastic cable: each segment slack (for counting snaps)
+  std::optional<PartingEvent> parting_event_;
+  ChainGeometry ship_side_ = noShipSide();  // parted: the cable left on the ship (segments 0: none)
+  mutable ChainSolver ship_side_solver_;    // workspace only
+  Eigen::Matrix3Xd ship_side_tensions_;
+  static ChainGeometry noShipSide();
+  void clearShipSide();  // none (rejoin, restoreState)
+  // The seabed's force on the free end of the vehicle side (at its first joint, the contact of half the
+  // first segment's length; zero without a seabed or for the end body alone).
+  Eigen::Vector3d freeEndContact(const ChainGeometry& geometry, const ShipEndState& end) const;
+  void shipSideDerivative(double t, const StateVector& y, StateVector& dydt) const;
+  void shipSideOutputs();
+  void projectShipSide(double t);
+  double shipSideLengthError() const;
+  bool free_ = false;  // parted: the first joint is free (its state after the payout rate)
+  void countSnaps(StepReport& report);
+  ImplicitStepper implicit_;
+  const RosenbrockTableau* tableau_ = nullptr;  // the implicit steppers' method
+  std::vector<StateVector> stage_k_;            // the implicit step's workspace
+  StateVector stage_y_, stage_f_, y_next_, error_;
+};
+
+}  // namespace tow_sim

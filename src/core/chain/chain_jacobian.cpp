@@ -1,0 +1,156 @@
+#include "tow_sim/core/chain/chain_jacobian.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "tow_sim/core/geometry.h"
+
+namespace tow_sim
+{
+namespace
+{
+using Matrix63d = Eigen::Matrix<double, 6, 3>;
+using Matrix36d = Eigen::Matrix<double, 3, 6>;
+
+// Cable segment e: d w / d(v_f, v_a) and d w / d(x_f, x_a) of its wrench at the CG (the centre), then
+// projected with [J_f J_a]^T.
+void segmentJacobian(const ChainModel& model, int e, double t, const ElementKinematics& k,
+                     const ChainGeometry& geometry, const ChainData& data, ElementJacobian& out)
+{
+  const Eigen::Matrix3d I3 = Eigen::Matrix3d::Identity();
+  const CableSegmentModel seg = model.segmentModel(e, geometry);
+  const double rate = e == 0 ? geometry.first_rate : 0.0;
+  // The first segment's cable moves at the payout rate along it (ChainModel::elementDynamics): the same
+  // derivatives, at the shifted velocity.
+  const ElementKinematics kw = rate != 0.0 ? ElementKinematics::fromJoints(k.x_f, k.x_a, k.v_f + rate * k.s, k.v_a) : k;
+  // The waves' velocity and acceleration vary along the wave (k a omega per metre): left out of J, which
+  // a W-method may approximate (their forcing is not stiff).
+  const VelocityForceJacobian vf = velocityForceJacobian(kw, data.environment.flowOver(kw.x_f, kw.x_a, t).velocity_W,
+                                                         seg.c1, seg.c2, seg.tangential_model, seg.smoothing_speed);
+  // u = (v_f + v_a)/2 - current, dv = v_a - v_f.
+  Matrix6d dw_dv;
+  dw_dv << 0.5 * vf.force_u, 0.5 * vf.force_u, 0.5 * vf.moment_u - vf.moment_dv, 0.5 * vf.moment_u + vf.moment_dv;
+  if (rate != 0.0)
+  {
+    // ChainSolver: wrench += (2 L'/L) I_rot w with w = s x dv / L (the segment's rotary inertia m L^2 / 12).
+    const double rotary = seg.mass * seg.length * seg.length / 12.0;
+    const Eigen::Matrix3d dm = (2.0 * rate / k.length) * rotary * skew(k.s) / k.length;
+    dw_dv.bottomLeftCorner<3, 3>() -= dm;
+    dw_dv.bottomRightCorner<3, 3>() += dm;
+  }
+  Matrix6d dw_dx = Matrix6d::Zero();
+  // An elastic segment takes the contact at its aft joint on that joint itself (ChainSolver).
+  const bool elastic = model.elastic();
+  Eigen::Matrix3d contact_p = Eigen::Matrix3d::Zero(), contact_v = Eigen::Matrix3d::Zero();
+  if (const Seabed* bottom = model.seabed())
+  {
+    const Eigen::Vector3d x_G = k.pointAt(0.5);
+    model.forEachContact(e, geometry,
+                         [&](double eta, double stiffness, double damping)
+                         {
+                           const Eigen::Vector3d p = k.pointAt(eta);
+                           Eigen::Matrix3d df_dp, df_dv;
+                           bottom->contactJacobian(p, k.velocityAt(eta), stiffness, damping, df_dp, df_dv);
+                           if (elastic)
+                           {
+                             contact_p += df_dp;
+                             contact_v += df_dv;
+                             return;
+                           }
+                           Matrix63d arm;  // a force at p as a wrench at the CG
+                           arm << I3, skew(p - x_G);
+                           Matrix36d at;  // p and its velocity from the joints'
+                           at << (1.0 - eta) * I3, eta * I3;
+                           dw_dv += arm * df_dv * at;
+                           dw_dx += arm * df_dp * at;
+                         });
+  }
+  const Matrix6d J = jointMap(k.s, k.length, 0.5);
+  out.dh_dv = J.transpose() * dw_dv;
+  out.dh_dx = J.transpose() * dw_dx;
+  out.dh_dv.bottomRightCorner<3, 3>() += contact_v;
+  out.dh_dx.bottomRightCorner<3, 3>() += contact_p;
+  if (const JointBody* point = model.bodyAft(e, geometry))  // its drag on the aft joint (S23)
+    out.dh_dv.bottomRightCorner<3, 3>() += point->forceVelocityJacobian(data.environment, t, k.x_a, k.v_a);
+}
+
+// The end body: central differences of its projected loads over x_f, x_a, v_f, v_a.
+void endBodyJacobian(const ChainModel& model, int e, double t, const ElementKinematics& k,
+                     const ChainGeometry& geometry, const ChainData& data, const Vector6d* accelerations,
+                     ElementJacobian& out)
+{
+  BodyDynamics body;
+  // The projected loads less the projected inertia's force at the state's accelerations, J^T (w - M_b J a).
+  auto loads = [&](const ElementKinematics& kk) -> Vector6d
+  {
+    model.elementDynamics(e, t, kk, geometry, data, body);
+    const Matrix6d J = jointMap(kk.s, kk.length, body.cg_fraction);
+    if (accelerations)
+      return J.transpose() * (body.wrench - body.mass * (J * *accelerations));
+    return J.transpose() * body.wrench;
+  };
+  // Central differences: the loads have corners (|u_n| where the cross-flow vanishes, as at a steady
+  // tow), where one-sided differences taken from the two joints would not cancel for a translation.
+  Eigen::Vector3d joint[4] = { k.x_f, k.x_a, k.v_f, k.v_a };
+  for (int j = 0; j < 12; ++j)
+  {
+    Eigen::Vector3d& component_of = joint[j / 3];
+    const double saved = component_of[j % 3];
+    const bool position = j < 6;
+    // About the cube root of machine epsilon of the scale of what is perturbed: the element's length, the speed.
+    const double step = 1e-5 * (position ? std::max(1.0, k.length) : std::max(1.0, std::abs(saved)));
+    component_of[j % 3] = saved + step;
+    const Vector6d plus = loads(ElementKinematics::fromJoints(joint[0], joint[1], joint[2], joint[3]));
+    component_of[j % 3] = saved - step;
+    const Vector6d minus = loads(ElementKinematics::fromJoints(joint[0], joint[1], joint[2], joint[3]));
+    component_of[j % 3] = saved;
+    (position ? out.dh_dx : out.dh_dv).col(j % 6) = (plus - minus) / (2.0 * step);
+  }
+}
+}  // namespace
+
+void addGeometricStiffness(const ElementKinematics& k, double mu, ElementJacobian& out)
+{
+  // The axial force (-mu s on the forward joint, +mu s on the aft one) turns with s = (x_a - x_f)/d:
+  // d(mu s)/d x_a = mu (I - s s^T)/d. Only a tension (mu < 0) stiffens.
+  const double tension = std::max(-mu, 0.0);
+  const Eigen::Matrix3d G = tension / k.length * (Eigen::Matrix3d::Identity() - k.s * k.s.transpose());
+  out.dh_dx.topLeftCorner<3, 3>() -= G;
+  out.dh_dx.topRightCorner<3, 3>() += G;
+  out.dh_dx.bottomLeftCorner<3, 3>() += G;
+  out.dh_dx.bottomRightCorner<3, 3>() -= G;
+}
+
+void addAxialStiffness(const CableParams& cable, double rest_length, const ElementKinematics& k, ElementJacobian& out)
+{
+  // The elastic segment's tension T = max(0, EA eps + c deps/dt) on its joints (+T s forward, -T s aft)
+  // through its length and stretch rate along s (the axis held fixed): EA/d0 and c/d0 on s s^T, while taut.
+  const double rate = k.s.dot(k.v_a - k.v_f);
+  if (cable.axialTension(k.length, rate, rest_length) <= 0.0)
+    return;
+  const Eigen::Matrix3d ss = k.s * k.s.transpose();
+  const Eigen::Matrix3d Kx = (*cable.axial_stiffness / rest_length) * ss, Dv = (cable.axial_damping / rest_length) * ss;
+  for (Matrix6d* m : { &out.dh_dx, &out.dh_dv })
+  {
+    const Eigen::Matrix3d& G = m == &out.dh_dx ? Kx : Dv;
+    m->topLeftCorner<3, 3>() -= G;
+    m->topRightCorner<3, 3>() += G;
+    m->bottomLeftCorner<3, 3>() += G;
+    m->bottomRightCorner<3, 3>() -= G;
+  }
+}
+
+void elementJacobian(const ChainModel& model, int e, double t, const ElementKinematics& k,
+                     const ChainGeometry& geometry, const ChainData& data, double mu, ElementJacobian& out,
+                     const Vector6d* accelerations)
+{
+  if (e < geometry.segments)
+    segmentJacobian(model, e, t, k, geometry, data, out);
+  else
+    endBodyJacobian(model, e, t, k, geometry, data, accelerations, out);
+  addGeometricStiffness(k, mu, out);
+  if (model.elastic() && e < geometry.segments)
+    addAxialStiffness(model.segmentCable(e, geometry), geometry.elementLength(e), k, out);
+}
+
+}  // namespace tow_sim

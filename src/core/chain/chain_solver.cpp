@@ -1,0 +1,212 @@
+#include "tow_sim/core/chain/chain_solver.h"
+
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+
+#include "tow_sim/core/geometry.h"
+
+namespace tow_sim
+{
+namespace
+{
+// (S20): an elastic segment's stretch. Its joints move apart along s, which the rigid projection has no
+// inertia for: the stretch mode's m/12 s s^T in the consistent-mass pattern [1 -1; -1 1] (with the rigid
+// part, m [1/3 1/6; 1/6 1/3] for the structural mass); its tension T = max(0, EA eps + c deps/dt) pulls the
+// forward joint aft (+T s) and the aft joint forward (-T s).
+void addStretch(const CableParams& cable, double rest_length, double mass, const ElementKinematics& k, ElementTerms& m)
+{
+  const Eigen::Matrix3d stretch = (mass / 12.0) * k.s * k.s.transpose();
+  m.M_ff += stretch;
+  m.M_aa += stretch;
+  m.M_fa -= stretch;
+  m.M_af -= stretch;
+  m.tension = cable.axialTension(k.length, k.s.dot(k.v_a - k.v_f), rest_length);
+  m.h_f += m.tension * k.s;
+  m.h_a -= m.tension * k.s;
+  m.c = 0.0;
+}
+}  // namespace
+
+void ChainSolver::solve(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data, double t,
+                        const ShipEndState& ship, const Eigen::Ref<const Eigen::Matrix3Xd>& x,
+                        const Eigen::Ref<const Eigen::Matrix3Xd>& v, Eigen::Ref<Eigen::Matrix3Xd> a,
+                        Eigen::Matrix3Xd* tensions, std::vector<double>* multipliers)
+{
+  terms_.resize(static_cast<size_t>(geometry.elementCount()));  // the winch re-meshes between calls
+  elementTerms(model, geometry, data, t, ship, x, v);
+  sweep_.factor(terms_);
+  sweep_.solve(terms_, ship.a_W, a, tensions, multipliers);
+}
+
+Eigen::Vector3d ChainSolver::solveFree(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data,
+                                       double t, const ShipEndState& first, const Eigen::Ref<const Eigen::Matrix3Xd>& x,
+                                       const Eigen::Ref<const Eigen::Matrix3Xd>& v, Eigen::Ref<Eigen::Matrix3Xd> a,
+                                       Eigen::Matrix3Xd* tensions, std::vector<double>* multipliers,
+                                       const Eigen::Vector3d& first_force)
+{
+  // No winch pays out a free chain: its first element keeps its length (whatever the geometry it came from).
+  ChainGeometry free_geometry = geometry;
+  free_geometry.first_rate = free_geometry.first_acceleration = 0.0;
+  terms_.resize(static_cast<size_t>(free_geometry.elementCount()));
+  elementTerms(model, free_geometry, data, t, first, x, v);
+  sweep_.factor(terms_);
+  return sweep_.solveFree(terms_, a, tensions, multipliers, first_force);
+}
+
+// (S1)-(S6): each element's loads (ChainModel::elementDynamics) and its Newton-Euler equations projected
+// onto its forward and aft joint accelerations.
+void ChainSolver::elementTerms(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data, double t,
+                               const ShipEndState& ship, const Eigen::Ref<const Eigen::Matrix3Xd>& x,
+                               const Eigen::Ref<const Eigen::Matrix3Xd>& v)
+{
+  BodyDynamics body;
+  for (int e = static_cast<int>(terms_.size()) - 1; e >= 0; --e)
+  {
+    const Eigen::Vector3d x_f = e == 0 ? ship.p_W : Eigen::Vector3d(x.col(e - 1));
+    const Eigen::Vector3d v_f = e == 0 ? ship.v_W : Eigen::Vector3d(v.col(e - 1));
+    const ElementKinematics k = ElementKinematics::fromJoints(x_f, x.col(e), v_f, v.col(e));
+    const bool elastic = model.elastic() && e < geometry.segments;
+    model.elementDynamics(e, t, k, geometry, data, body, !elastic);
+    // While the winch changes the first segment's length L, its axis s = (x_a - x_f)/L turns with
+    // dw/dt = s x (a_a - a_f)/L - 2 (L'/L) w: the known part goes to the loads.
+    if (e == 0 && geometry.first_rate != 0.0)
+      body.wrench -= body.mass.rightCols<3>() * (-2.0 * geometry.first_rate / k.length * k.omega);
+
+    // (S1): [a_G; dw/dt] = J_f a_f + J_a a_a; (S5): the projected inertia and loads.
+    const Matrix6d J = jointMap(k.s, k.length, body.cg_fraction);
+    const Matrix6d MJ = body.mass * J;
+    ElementTerms& m = terms_[static_cast<size_t>(e)];
+    m.M_ff = J.leftCols<3>().transpose() * MJ.leftCols<3>();
+    m.M_fa = J.leftCols<3>().transpose() * MJ.rightCols<3>();
+    m.M_af = J.rightCols<3>().transpose() * MJ.leftCols<3>();
+    m.M_aa = J.rightCols<3>().transpose() * MJ.rightCols<3>();
+    m.h_f = J.leftCols<3>().transpose() * body.wrench;
+    m.h_a = J.rightCols<3>().transpose() * body.wrench;
+    m.s = k.s;
+    m.constrained = !elastic;
+    if (const JointBody* point = model.bodyAft(e, geometry))  // (S23): a point body lumped on the aft joint
+    {
+      m.M_aa.diagonal().array() += point->inertia();
+      m.h_a += point->force(data.environment, t, k.x_a, k.v_a);
+    }
+    if (elastic)
+    {
+      addStretch(model.segmentCable(e, geometry), geometry.elementLength(e), model.segmentModel(e, geometry).mass, k,
+                 m);
+      m.h_a += model.segmentContactForce(e, k, geometry);  // at its aft joint itself
+      continue;
+    }
+    // (S6): s.(a_a - a_f) = c; at the winch |x_a - x_f| = L(t) gives c = (L'^2 + L L'' - |v_a - v_f|^2) / L.
+    m.c = -(k.v_a - k.v_f).squaredNorm() / k.length;
+    if (e == 0)
+      m.c += geometry.first_rate * geometry.first_rate / k.length + geometry.first_acceleration;
+  }
+}
+
+// (S8)-(S13), matrices only, from the end body (nothing pulls on its tail point: K = 0) to the ship.
+void ChainSweep::factor(const std::vector<ElementTerms>& terms)
+{
+  factors_.resize(terms.size());
+  Eigen::Matrix3d K_aft = Eigen::Matrix3d::Zero();
+  for (int e = static_cast<int>(terms.size()) - 1; e >= 0; --e)
+  {
+    const ElementTerms& m = terms[static_cast<size_t>(e)];
+    Factor& f = factors_[static_cast<size_t>(e)];
+    const Eigen::Vector3d& s = m.s;
+    if (!m.constrained)
+    {
+      // (S21): no multiplier; A = M_aa + K_aft is regular (the stretch inertia along s).
+      f.kappa = 0.0;
+      f.A_inv = (m.M_aa + K_aft).inverse();
+      f.b.setZero();
+      f.b_t.setZero();
+      f.sigma = 1.0;
+      f.xi.setZero();
+      f.Phi = -f.A_inv * m.M_af;
+      f.K = m.M_ff + m.M_fa * f.Phi;
+      K_aft = f.K;
+      continue;
+    }
+    // (S8)-(S9): the aft joint's inertia A = M_aa + K_aft, regularised along s by kappa s s^T (s.a_a is fixed
+    // by the constraint, so only the multiplier changes: mu' = mu + kappa s.a_a).
+    Eigen::Matrix3d A = m.M_aa + K_aft;
+    f.kappa = A.trace() / 3.0;
+    A += f.kappa * s * s.transpose();
+    f.A_inv = A.inverse();
+    f.b = f.A_inv * s;
+    f.b_t = f.A_inv.transpose() * s;
+    f.sigma = s.dot(f.b);
+    // (S10)-(S11): the multiplier from the length constraint, affine in a_f: its a_f part.
+    const Eigen::Vector3d xi_reg = (s + m.M_af.transpose() * f.b_t) / f.sigma;
+    f.xi = xi_reg - f.kappa * s;
+    // (S12)-(S13): the acceleration transfer to the aft joint and the tension at the forward joint.
+    f.Phi = -f.A_inv * m.M_af + f.b * xi_reg.transpose();
+    f.K = m.M_ff + m.M_fa * f.Phi + s * f.xi.transpose();
+    K_aft = f.K;
+  }
+}
+
+// (S9)-(S13) for the loads (tau_aft = 0 at the tail), then (S14) from the first joint's acceleration.
+void ChainSweep::solve(const std::vector<ElementTerms>& terms, const Eigen::Vector3d& a_first,
+                       Eigen::Ref<Eigen::Matrix3Xd> a, Eigen::Matrix3Xd* tensions, std::vector<double>* multipliers)
+{
+  loads(terms);
+  forward(terms, a_first, a, tensions, multipliers);
+}
+
+// (S22): nothing pulls on the first joint, T_1 = K_1 a_1 + tau_1 = 0. K_1, the apparent inertia of the whole
+// chain at that joint, is regular when its elements have mass.
+Eigen::Vector3d ChainSweep::solveFree(const std::vector<ElementTerms>& terms, Eigen::Ref<Eigen::Matrix3Xd> a,
+                                      Eigen::Matrix3Xd* tensions, std::vector<double>* multipliers,
+                                      const Eigen::Vector3d& first_force)
+{
+  loads(terms);
+  const Eigen::Vector3d a_first = factors_.front().K.partialPivLu().solve(first_force - tau_.front());
+  forward(terms, a_first, a, tensions, multipliers);
+  return a_first;
+}
+
+void ChainSweep::loads(const std::vector<ElementTerms>& terms)
+{
+  const size_t n = terms.size();
+  phi_.resize(n);
+  tau_.resize(n);
+  eta_.resize(n);
+  Eigen::Vector3d tau_aft = Eigen::Vector3d::Zero();
+  for (int e = static_cast<int>(n) - 1; e >= 0; --e)
+  {
+    const size_t i = static_cast<size_t>(e);
+    const ElementTerms& m = terms[i];
+    const Factor& f = factors_[i];
+    const Eigen::Vector3d r0 = m.h_a - tau_aft;
+    const double eta_reg = m.constrained ? (m.c - f.b_t.dot(r0)) / f.sigma : 0.0;  // (S10); (S21): none
+    eta_[i] = eta_reg - f.kappa * m.c;                                             // (S11)
+    phi_[i] = f.A_inv * r0 + eta_reg * f.b;                                        // (S12)
+    tau_[i] = m.M_fa * phi_[i] - m.h_f + eta_[i] * m.s;                            // (S13)
+    tau_aft = tau_[i];
+  }
+}
+
+void ChainSweep::forward(const std::vector<ElementTerms>& terms, const Eigen::Vector3d& a_first,
+                         Eigen::Ref<Eigen::Matrix3Xd> a, Eigen::Matrix3Xd* tensions, std::vector<double>* multipliers)
+{
+  const size_t n = terms.size();
+  if (tensions)
+    tensions->resize(3, static_cast<Eigen::Index>(n));  // no-op when sized already
+  if (multipliers)
+    multipliers->resize(n);
+  Eigen::Vector3d a_f = a_first;
+  for (size_t i = 0; i < n; ++i)
+  {
+    const Eigen::Index e = static_cast<Eigen::Index>(i);
+    const Factor& f = factors_[i];
+    if (tensions)
+      tensions->col(e) = f.K * a_f + tau_[i];
+    if (multipliers)
+      (*multipliers)[i] = terms[i].constrained ? f.xi.dot(a_f) + eta_[i] : -terms[i].tension;  // (S11)
+    a.col(e) = f.Phi * a_f + phi_[i];
+    a_f = a.col(e);
+  }
+}
+
+}  // namespace tow_sim

@@ -1,0 +1,88 @@
+#include "tow_sim/core/integration/implicit_stepper.h"
+
+#include "tow_sim/core/chain/chain_state.h"
+
+namespace tow_sim
+{
+void ImplicitStepper::linearise(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data, double t,
+                                const ShipEndState& ship, const Eigen::Ref<const Eigen::Matrix3Xd>& x,
+                                const Eigen::Ref<const Eigen::Matrix3Xd>& v,
+                                const Eigen::Ref<const Eigen::Matrix3Xd>& a, const std::vector<ElementTerms>& terms,
+                                const std::vector<double>& multipliers, double winch_d_length, double winch_d_rate)
+{
+  const size_t n = terms.size();
+  inertia_ = terms;
+  jacobians_.resize(n);
+  stage_.resize(n);
+  for (size_t i = 0; i < n; ++i)
+  {
+    const int e = static_cast<int>(i);
+    const Eigen::Vector3d x_f = e == 0 ? ship.p_W : Eigen::Vector3d(x.col(e - 1));
+    const Eigen::Vector3d v_f = e == 0 ? ship.v_W : Eigen::Vector3d(v.col(e - 1));
+    const ElementKinematics k = ElementKinematics::fromJoints(x_f, x.col(e), v_f, v.col(e));
+    Vector6d a_joints;
+    a_joints << (e == 0 ? ship.a_W : Eigen::Vector3d(a.col(e - 1))), a.col(e);
+    elementJacobian(model, e, t, k, geometry, data, multipliers[i], jacobians_[i], &a_joints);
+    stage_[i].s = terms[i].s;
+    stage_[i].constrained = terms[i].constrained;
+  }
+  winch_d_length_ = winch_d_length;
+  winch_d_rate_ = winch_d_rate;
+  h_ = 0.0;  // factor() must follow
+}
+
+void ImplicitStepper::factor(double h)
+{
+  const double gh = gamma_ * h, gh2 = gh * gh;
+  for (size_t i = 0; i < stage_.size(); ++i)
+  {
+    const ElementTerms& M = inertia_[i];
+    const Matrix6d& D = jacobians_[i].dh_dv;
+    const Matrix6d& K = jacobians_[i].dh_dx;
+    ElementTerms& N = stage_[i];
+    N.M_ff = M.M_ff - gh * D.topLeftCorner<3, 3>() - gh2 * K.topLeftCorner<3, 3>();
+    N.M_fa = M.M_fa - gh * D.topRightCorner<3, 3>() - gh2 * K.topRightCorner<3, 3>();
+    N.M_af = M.M_af - gh * D.bottomLeftCorner<3, 3>() - gh2 * K.bottomLeftCorner<3, 3>();
+    N.M_aa = M.M_aa - gh * D.bottomRightCorner<3, 3>() - gh2 * K.bottomRightCorner<3, 3>();
+  }
+  sweep_.factor(stage_);
+  h_ = h;
+}
+
+void ImplicitStepper::solve(const std::vector<double>& r, const TowPointRates& tow, std::vector<double>& K)
+{
+  const StateLayout L{ joints() };
+  const double gh = gamma_ * h_;
+  const auto r_x = L.positions(r);
+  const auto r_v = L.velocities(r);
+  for (size_t i = 0; i < stage_.size(); ++i)
+  {
+    // g = M r_v + gamma h K r_x over the element's two joints. For the tow point, whose K is known, the
+    // same form holds with r_v = K_v (its acceleration increment is not an unknown: K_v - r_v = 0) and
+    // r_x = K_x - gamma h K_v.
+    const Eigen::Index e = static_cast<Eigen::Index>(i);
+    const Eigen::Vector3d rv_f = e == 0 ? tow.v : Eigen::Vector3d(r_v.col(e - 1));
+    const Eigen::Vector3d rx_f = e == 0 ? Eigen::Vector3d(tow.x - gh * tow.v) : Eigen::Vector3d(r_x.col(e - 1));
+    const Eigen::Vector3d rv_a = r_v.col(e), rx_a = r_x.col(e);
+    const ElementTerms& M = inertia_[i];
+    const Matrix6d& Kx = jacobians_[i].dh_dx;
+    ElementTerms& stage = stage_[i];
+    stage.h_f =
+        M.M_ff * rv_f + M.M_fa * rv_a + gh * (Kx.topLeftCorner<3, 3>() * rx_f + Kx.topRightCorner<3, 3>() * rx_a);
+    stage.h_a =
+        M.M_af * rv_f + M.M_aa * rv_a + gh * (Kx.bottomLeftCorner<3, 3>() * rx_f + Kx.bottomRightCorner<3, 3>() * rx_a);
+    stage.c = stage.s.dot(rv_a - rv_f);
+  }
+  K.resize(r.size());
+  K_v_.resize(3, L.joints);
+  sweep_.solve(stage_, tow.v, K_v_);
+  L.velocities(K) = K_v_;
+  L.positions(K) = r_x + gh * K_v_;
+  // The winch: [1, -gh; -gh a_L, 1 - gh a_R] (K_L, K_R) = (r_L, r_R).
+  const double r_L = L.cableOut(r), r_R = L.payoutRate(r);
+  const double det = (1.0 - gh * winch_d_rate_) - gh * gh * winch_d_length_;
+  L.payoutRate(K) = (r_R + gh * winch_d_length_ * r_L) / det;
+  L.cableOut(K) = r_L + gh * L.payoutRate(K);
+}
+
+}  // namespace tow_sim

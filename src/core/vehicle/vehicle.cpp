@@ -1,0 +1,336 @@
+#include "tow_sim/core/vehicle/vehicle.h"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <stdexcept>
+
+#include "tow_sim/core/constants.h"
+#include "tow_sim/core/geometry.h"
+#include "tow_sim/core/param_tables.h"
+#include "tow_sim/core/vehicle/added_mass.h"
+
+namespace tow_sim
+{
+namespace
+{
+// Below this |z x x_b| the axis counts as vertical and y_b comes from the heading hint.
+constexpr double kVerticalTolerance = 1e-6;
+
+Eigen::Matrix<double, 6, 6> blockRotation(const Eigen::Matrix3d& R)
+{
+  Eigen::Matrix<double, 6, 6> T = Eigen::Matrix<double, 6, 6>::Zero();
+  T.topLeftCorner<3, 3>() = R;
+  T.bottomRightCorner<3, 3>() = R;
+  return T;
+}
+
+Eigen::Vector3d headingHint(const Eigen::Vector3d& v_through_water_W)
+{
+  const Eigen::Vector3d horizontal(v_through_water_W.x(), v_through_water_W.y(), 0.0);
+  return horizontal.norm() > 1e-6 ? Eigen::Vector3d(horizontal.normalized()) : Eigen::Vector3d::UnitX();
+}
+}  // namespace
+
+void validate(const VehicleParams& v, const std::string& p)
+{
+  // The table checks every number (fins included); then what it cannot say.
+  validateParams(vehicleParams(), v, p);
+  if (!v.inertia_B.allFinite() ||
+      (v.inertia_B - v.inertia_B.transpose()).cwiseAbs().maxCoeff() > 1e-9 * v.inertia_B.norm() ||
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(v.inertia_B).eigenvalues().minCoeff() <= 0.0)
+    throw std::invalid_argument(p +
+                                ".inertia must be a finite, symmetric, positive definite 3x3 matrix [kg m^2] "
+                                "about the CG in body axes (xx, yy, zz > 0)");
+  if (v.prolate_spheroid)
+    requireInRange(p + ".added_mass.prolate_spheroid.center_from_bail", v.prolate_spheroid->center_from_bail,
+                   -v.nose_from_bail, v.tail_from_bail, "[m] (from -nose_from_bail to tail_from_bail)");
+  else
+    validateAddedMass(v.added_mass_b, p + ".added_mass.matrix");
+}
+
+Eigen::Matrix3d BodyFrame::rotation() const
+{
+  Eigen::Matrix3d R;
+  R << x, y, z;
+  return R;
+}
+
+BodyFrame bodyFrame(const Eigen::Vector3d& s, const Eigen::Vector3d& heading_hint)
+{
+  BodyFrame f;
+  f.x = -s;
+  Eigen::Vector3d y = Eigen::Vector3d::UnitZ().cross(f.x);
+  if (y.norm() < kVerticalTolerance)
+  {
+    f.vertical = true;
+    y = Eigen::Vector3d::UnitZ().cross(heading_hint);
+    if (y.norm() < kVerticalTolerance)
+      y = Eigen::Vector3d::UnitY();
+    y -= y.dot(f.x) * f.x;  // keep the frame orthonormal
+  }
+  f.y = y.normalized();
+  f.z = f.x.cross(f.y);
+  return f;
+}
+
+Eigen::Quaterniond AttitudeHold::update(const Eigen::Vector3d& x_b_W)
+{
+  const Eigen::Vector3d x = x_b_W.normalized();
+  const double tilt = std::atan2(x.head<2>().norm(), std::abs(x.z()));  // from the vertical
+  const double own_heading = std::atan2(x.y(), x.x());
+  const bool own_heading_defined = x.head<2>().norm() > kVerticalTolerance;
+  if (tilt >= 2.0 * cone_ || (!has_heading_ && own_heading_defined))
+  {
+    heading_ = own_heading;
+    has_heading_ = true;
+  }
+  double heading = heading_;
+  if (tilt > cone_ && tilt < 2.0 * cone_)
+  {
+    const double w = (tilt - cone_) / cone_;  // 0 at the cone, 1 at twice the cone
+    heading += w * std::atan2(std::sin(own_heading - heading_), std::cos(own_heading - heading_));
+  }
+  // y_b level and normal to the heading, then made normal to x_b.
+  Eigen::Vector3d y(-std::sin(heading), std::cos(heading), 0.0);
+  y = (y - y.dot(x) * x).normalized();
+  Eigen::Matrix3d R;
+  R << x, y, x.cross(y);
+  return Eigen::Quaterniond(R).normalized();
+}
+
+struct Vehicle::Loads
+{
+  Vector6d wrench;  // at the CG, world
+  double rudder = 0.0, elevator = 0.0, thrust = 0.0;
+  FinPairLoads rudder_loads, elevator_loads;
+};
+
+Vehicle::Vehicle(const VehicleParams& params, const NumericsParams& numerics)
+    : p_(params), smoothing_speed_(numerics.tangential_smoothing_speed)
+{
+  validate(p_);
+  added_mass_b_ = p_.added_mass_b;
+  if (p_.prolate_spheroid)
+  {
+    // Per unit water density here; dynamics() multiplies by the environment's density.
+    const ProlateSpheroid& ps = *p_.prolate_spheroid;
+    const Eigen::Vector3d r_cg_to_center(-(ps.center_from_bail - p_.cg_from_bail), 0.0, 0.0);  // body axes
+    added_mass_b_ = moveMassMatrix(prolateSpheroidAddedMass(ps.length, ps.diameter, 1.0), r_cg_to_center);
+  }
+}
+
+Actuators Vehicle::restingActuators(double t) const
+{
+  Actuators a;
+  a.rudder = FinServo(p_.rudder.max_deflection, p_.rudder.max_rate);
+  a.elevator = FinServo(p_.elevator.max_deflection, p_.elevator.max_rate);
+  a.rudder.reset(t, 0.0);
+  a.elevator.reset(t, 0.0);
+  return a;
+}
+
+bool Vehicle::command(Actuators& actuators, double t, double rudder, double elevator, double thrust) const
+{
+  if (!std::isfinite(rudder) || !std::isfinite(elevator) || !std::isfinite(thrust))
+    throw std::invalid_argument("vehicle command: rudder, elevator and thrust must be finite");
+  const bool saturated = std::abs(rudder) > p_.rudder.max_deflection ||
+                         std::abs(elevator) > p_.elevator.max_deflection || std::abs(thrust) > p_.max_thrust;
+  actuators.rudder.command(t, rudder);
+  actuators.elevator.command(t, elevator);
+  actuators.thrust = std::clamp(thrust, -p_.max_thrust, p_.max_thrust);
+  return saturated;
+}
+
+Vehicle::Loads Vehicle::loads(double t, const ElementKinematics& k, const Environment& env, const Actuators& actuators,
+                              const BodyFrame& frame) const
+{
+  const double tail = p_.tail_from_bail;
+  const Eigen::Vector3d& s = k.s;
+  const Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
+  Loads out;
+  // The vehicle is small beside the current's vertical scale and the waves' length: the flow at its CG
+  // (current plus waves) for all its loads.
+  const Eigen::Vector3d current = env.flowAt(k.pointAt(p_.cg_from_bail / tail), t).velocity_W;
+  Eigen::Vector3d force = -p_.mass * env.gravity * up;
+  const Eigen::Vector3d buoyancy = env.water_density * env.gravity * p_.displaced_volume * up;
+  force += buoyancy;
+  Eigen::Vector3d moment = ((p_.cb_from_bail - p_.cg_from_bail) * s).cross(buoyancy);
+
+  // Velocity forces over the bail-tail length, at its midpoint (as for a cable element).
+  const double wet = env.water_density > 0.0 ? 1.0 : 0.0;  // vacuum: no hydrodynamic loads
+  const VelocityForces vf =
+      velocityForces(k, current, wet * p_.c1, wet * p_.c2, TangentialDragModel::kPode, smoothing_speed_);
+  force += vf.force;
+  moment += ((0.5 * tail - p_.cg_from_bail) * s).cross(vf.force) + vf.moment;
+
+  // Thrust along x_b at the tail, its line of action thrust_offset_z above the axis.
+  out.thrust = actuators.thrust;
+  const Eigen::Vector3d thrust_force = actuators.thrust * frame.x;
+  force += thrust_force;
+  moment += ((tail - p_.cg_from_bail) * s + p_.thrust_offset_z * frame.z).cross(thrust_force);
+
+  // Fins at their servo angles, in the flow at their own point.
+  out.rudder = actuators.rudder.angleAt(t);
+  out.elevator = actuators.elevator.angleAt(t);
+  FinPairParams rudder = p_.rudder, elevator = p_.elevator;
+  rudder.lift_constant *= wet;
+  rudder.drag_constant *= wet;
+  elevator.lift_constant *= wet;
+  elevator.drag_constant *= wet;
+  const Eigen::Vector3d v_vf = k.velocityAt(p_.vertical_fin_from_bail / tail) - current;
+  const Eigen::Vector3d v_hf = k.velocityAt(p_.horizontal_fin_from_bail / tail) - current;
+  out.rudder_loads = finPairLoads(rudder, FinPlane::kVertical, out.rudder, v_vf, frame.x, frame.y, frame.z,
+                                  p_.vertical_fin_from_bail - p_.cg_from_bail);
+  out.elevator_loads = finPairLoads(elevator, FinPlane::kHorizontal, out.elevator, v_hf, frame.x, frame.y, frame.z,
+                                    p_.horizontal_fin_from_bail - p_.cg_from_bail);
+  force += out.rudder_loads.lift_W + out.rudder_loads.drag_W + out.elevator_loads.lift_W + out.elevator_loads.drag_W;
+  moment += out.rudder_loads.moment_cg_W + out.elevator_loads.moment_cg_W;
+
+  out.wrench << force, moment;
+  return out;
+}
+
+void Vehicle::dynamics(double t, const ElementKinematics& k, const Environment& env, const Actuators& actuators,
+                       BodyDynamics& out) const
+{
+  const double gamma = p_.cg_from_bail / p_.tail_from_bail;
+  const Eigen::Vector3d v_cg = k.velocityAt(gamma);
+  const WaveKinematics flow = env.flowAt(k.pointAt(gamma), t);
+  const Eigen::Vector3d& current = flow.velocity_W;
+  const BodyFrame frame = bodyFrame(k.s, headingHint(v_cg - current));
+  const Eigen::Matrix3d R = frame.rotation();
+  const Eigen::Matrix3d I3 = Eigen::Matrix3d::Identity();
+  const Eigen::Matrix3d inertia_W = R * p_.inertia_B * R.transpose();
+  out.cg_fraction = gamma;
+  out.mass.setZero();
+  out.mass.topLeftCorner<3, 3>() = p_.mass * I3;
+  out.mass.bottomRightCorner<3, 3>() = inertia_W;
+
+  const Loads l = loads(t, k, env, actuators, frame);
+  out.wrench = l.wrench;
+  // d(I w)/dt = I dw/dt + w x I w with w = s x ds/dt (no roll).
+  out.wrench.tail<3>() -= k.omega.cross(inertia_W * k.omega);
+
+  const Matrix6d rigid = out.mass;
+  if (p_.added_mass_approach == AddedMassApproach::kA)
+  {
+    // -e P (a_mid), a_mid = a_G + dw/dt x r, r from the CG to the bail-tail midpoint.
+    const double e = env.water_density > 0.0 ? p_.added_mass_a : 0.0;
+    const Eigen::Matrix3d P = I3 - k.s * k.s.transpose();
+    const Eigen::Matrix3d S = skew((0.5 * p_.tail_from_bail - p_.cg_from_bail) * k.s);
+    out.mass.topLeftCorner<3, 3>() += e * P;
+    out.mass.topRightCorner<3, 3>() -= e * S;
+    out.mass.bottomLeftCorner<3, 3>() += e * S;
+    out.mass.bottomRightCorner<3, 3>() -= e * S * S;
+  }
+  else
+  {
+    // The spheroid's matrix is per unit density; a given matrix holds in water and vanishes in vacuum.
+    const double density_scale = p_.prolate_spheroid ? env.water_density : (env.water_density > 0.0 ? 1.0 : 0.0);
+    const Matrix6d A = density_scale * added_mass_b_;
+    const Matrix6d T = blockRotation(R);
+    out.mass += T * A * T.transpose();
+    if (p_.munk_terms)
+    {
+      const Vector6d munk = munkWrench(A, R.transpose() * (v_cg - current), R.transpose() * k.omega);
+      out.wrench.head<3>() += R * munk.head<3>();
+      out.wrench.tail<3>() += R * munk.tail<3>();
+    }
+  }
+  if (env.wave_field)
+  {
+    const Matrix6d added = out.mass - rigid;
+    out.wrench += waveInertiaWrench(added.topLeftCorner<3, 3>(), added.bottomLeftCorner<3, 3>(),
+                                    env.water_density * p_.displaced_volume, (p_.cb_from_bail - p_.cg_from_bail) * k.s,
+                                    flow.acceleration_W);
+  }
+}
+
+VehicleOutputs Vehicle::outputs(double t, const ElementKinematics& k, const Environment& env,
+                                const Actuators& actuators) const
+{
+  const double gamma = p_.cg_from_bail / p_.tail_from_bail;
+  VehicleOutputs o;
+  o.p_cg_W = k.pointAt(gamma);
+  o.v_cg_W = k.velocityAt(gamma);
+  const BodyFrame frame = bodyFrame(k.s, headingHint(o.v_cg_W - env.flowAt(o.p_cg_W, t).velocity_W));
+  const Eigen::Matrix3d R = frame.rotation();
+  o.q_WB = Eigen::Quaterniond(R).normalized();
+  o.v_cg_B = R.transpose() * o.v_cg_W;
+  o.omega_W = k.omega;
+  o.omega_B = R.transpose() * k.omega;
+  o.depth = -o.p_cg_W.z();
+  o.pitch = pitchOf(frame.x);
+  o.yaw = yawOf(frame.y);
+  const Loads l = loads(t, k, env, actuators, frame);
+  o.rudder = l.rudder;
+  o.elevator = l.elevator;
+  o.thrust = l.thrust;
+  o.rudder_loads = l.rudder_loads;
+  o.elevator_loads = l.elevator_loads;
+  for (FinPairLoads* f : { &o.rudder_loads, &o.elevator_loads })
+  {
+    f->lift_B = R.transpose() * f->lift_W;
+    f->drag_B = R.transpose() * f->drag_W;
+    f->moment_cg_B = R.transpose() * f->moment_cg_W;
+  }
+  return o;
+}
+
+const ParamTable<VehicleParams>& vehicleParams()
+{
+  using V = VehicleParams;
+  const auto along = [](const V& v) { return std::make_pair(-v.nose_from_bail, v.tail_from_bail); };
+  const char* along_text = "from -nose_from_bail to tail_from_bail";
+  // Inertia entries: a product of inertia sets both of its (symmetric) places.
+  auto get = [](int i, int j) { return [i, j](const V& v) { return v.inertia_B(i, j); }; };
+  auto set = [](int i, int j)
+  {
+    return [i, j](V& v, double value)
+    {
+      v.inertia_B(i, j) = value;
+      v.inertia_B(j, i) = value;
+    };
+  };
+  static const ParamTable<V> table =
+      ParamTable<V>()
+          .number("tail_from_bail", &V::tail_from_bail, "m", 0.0, 100.0, kOpen,
+                  "d_{ν+1}: the tail point, which fixes the axis")
+          .bounded("cg_from_bail", &V::cg_from_bail, "m", along, along_text, "d_{ν+2}: centre of gravity")
+          .bounded("horizontal_fin_from_bail", &V::horizontal_fin_from_bail, "m", along, along_text,
+                   "d_{ν+3}: elevator axis")
+          .bounded("vertical_fin_from_bail", &V::vertical_fin_from_bail, "m", along, along_text, "d_{ν+4}: rudder axis")
+          .number("nose_from_bail", &V::nose_from_bail, "m", 0.0, 100.0, kClosed, "d_{ν+5}, measured forward")
+          .bounded("cb_from_bail", &V::cb_from_bail, "m", along, along_text, "d_{ν+6}: centre of buoyancy")
+          .number("mass", &V::mass, "kg", 0.0, 1e6, kOpen, "in air")
+          .number("displaced_volume", &V::displaced_volume, "m^3", 0.0, 1e3, kClosed, "buoyancy ρgV at the CB")
+          .numberAt("inertia.xx", get(0, 0), set(0, 0), "kg m^2", 0.0, 1e9, kOpen,
+                    "roll inertia about the CG, body axes (FLU)")
+          .numberAt("inertia.yy", get(1, 1), set(1, 1), "kg m^2", 0.0, 1e9, kOpen,
+                    "pitch inertia (the matrix: positive definite)")
+          .numberAt("inertia.zz", get(2, 2), set(2, 2), "kg m^2", 0.0, 1e9, kOpen, "yaw inertia")
+          .numberAt("inertia.xy", get(0, 1), set(0, 1), "kg m^2", -1e9, 1e9, kClosed,
+                    "product of inertia (the matrix symmetric)")
+          .numberAt("inertia.xz", get(0, 2), set(0, 2), "kg m^2", -1e9, 1e9, kClosed, "product of inertia")
+          .numberAt("inertia.yz", get(1, 2), set(1, 2), "kg m^2", -1e9, 1e9, kClosed, "product of inertia")
+          .number("c1", &V::c1, "N s^2/m^3", 0.0, 1e6, kClosed, "tangential velocity-force constant (bail to tail)")
+          .number("c2", &V::c2, "N s^2/m^3", 0.0, 1e6, kClosed, "normal one, with its rotation-drag moment")
+          .choice("added_mass.approach", &V::added_mass_approach,
+                  { { "A", AddedMassApproach::kA }, { "B", AddedMassApproach::kB } },
+                  "A: −e(a − (a·s)s) at the bail–tail midpoint (report); B: Kirchhoff 6×6")
+          .number("added_mass.e", &V::added_mass_a, "kg", 0.0, 1e6, kClosed, "e_{ν+1} of Approach A")
+          .custom("added_mass.matrix", "kg, kg m, kg m^2", "zeros", "symmetric positive semi-definite",
+                  "Approach B about the CG in body axes: 36 numbers row by row, or the 21 of its upper triangle")
+          .custom("added_mass.prolate_spheroid", "m", "none", "length > 0, 0 < diameter ≤ length",
+                  "{length, diameter, center_from_bail}: the matrix from Lamb's k₁, k₂, k′ (instead of matrix)")
+          .boolean("added_mass.munk_terms", &V::munk_terms,
+                   "Approach B: keep Kirchhoff's velocity-product (Munk) terms; the report drops them")
+          .number("max_thrust", &V::max_thrust, "N", 0.0, 1e6, kClosed, "thrust commands saturate at ±this")
+          .number("thrust_offset_z", &V::thrust_offset_z, "m", -10.0, 10.0, kClosed,
+                  "the thrust's line of action above (+z_b) the axis")
+          .nest("rudder", &V::rudder, finParams())
+          .nest("elevator", &V::elevator, finParams());
+  return table;
+}
+
+}  // namespace tow_sim
