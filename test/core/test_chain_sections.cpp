@@ -366,6 +366,43 @@ TEST(ChainSections, ReleasedInVacuumTheChainKeepsItsEnergy)
   EXPECT_GT((sim.state().x - start.x).norm(), 1.0);  // it did swing
 }
 
+TEST(ChainSections, TheWinchPaysOutTheFirstSectionOnly)
+{
+  // 40 m of the first section and 50 m aft of it: a winch from 60 to 200 m of cable out holds the first
+  // section between 10 and 150 m. Paying out lengthens it alone; the sections aft keep their segments.
+  const auto model = makeSectioned(threeSections(), { clump(8, 150.0, 0.02) }, Environment());
+  WinchParams winch;
+  winch.enabled = true;
+  winch.min_length = 60.0;
+  winch.max_length = 200.0;
+  ShipMotion ship = constantVelocityShip(Eigen::Vector3d::Zero(), Eigen::Vector3d(1.5, 0.0, 0.0));
+  Simulator sim(model, ship, winch);
+  sim.reset(0.0, straightChain(*model, Eigen::Vector3d::Zero(), Eigen::Vector3d(-1.0, 0.0, -1.0), ship(0.0).v_W));
+  sim.setWinchCommand(1.0);
+  sim.advanceTo(30.0);
+  const ChainGeometry& g = sim.geometry();
+  EXPECT_GT(sim.cableLength(), 110.0);
+  EXPECT_NEAR(g.cableLength(), sim.cableLength(), 1e-9 * sim.cableLength());
+  EXPECT_EQ(g.segments - g.aftSectionSegments(), g.segments - 8);
+  EXPECT_GT(g.segments, 12 + 1);  // the first section split
+  for (int e = g.segments - 8; e < g.segments; ++e)
+    EXPECT_DOUBLE_EQ(g.elementLength(e), e < g.segments - 2 ? 5.0 : 10.0) << e;
+  EXPECT_EQ(g.sectionOf(g.segments - 9), 0);
+  EXPECT_EQ(g.sectionOf(g.segments - 8), 1);
+  // A least cable out that would haul in the sections aft of the first is refused by name.
+  winch.min_length = 45.0;
+  try
+  {
+    Simulator refused(model, ship, winch);
+    ADD_FAILURE() << "accepted a winch.min_length inside the sections aft of the first";
+  }
+  catch (const std::invalid_argument& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("winch.min_length"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("sections aft of the first"), std::string::npos) << e.what();
+  }
+}
+
 TEST(ChainSections, BadSectionsAndBodiesAreRefusedByName)
 {
   std::vector<CableParams> sections = threeSections();

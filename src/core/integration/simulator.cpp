@@ -51,7 +51,7 @@ Simulator::Simulator(std::shared_ptr<const ChainModel> model, ShipMotion ship, c
 {
   if (!ship_)
     throw std::invalid_argument("Simulator: no ship motion given");
-  validate(winch_, model_->cable());
+  validateWinch();
   data_ = model_->initialData(0.0);
   const StateLayout L = layout();
   y_.assign(L.size(), 0.0);
@@ -123,6 +123,33 @@ ChainGeometry Simulator::geometryOf(const StateVector& y) const
   g.first_rate = rate;
   g.first_acceleration = winchAcceleration(winch_, data_.winch_command, length, rate);
   return g;
+}
+
+void Simulator::validateWinch() const
+{
+  if (model_->sectionCount() == 1)
+  {
+    validate(winch_, model_->cable());
+    return;
+  }
+  // With cable sections the winch pays out and hauls in the first section only (docs/solver.md §11): its
+  // limits, less the cable of the sections aft of it, are the first section's.
+  double aft = 0.0;
+  for (int i = 1; i < model_->sectionCount(); ++i)
+    aft += model_->section(i).cable.length;
+  WinchParams first = winch_;
+  first.min_length -= aft;
+  first.max_length -= aft;
+  try
+  {
+    validate(first, model_->cable());
+  }
+  catch (const std::invalid_argument& e)
+  {
+    throw std::invalid_argument(
+        std::string(e.what()) + " (with cable sections: the winch's min_length and max_length less the " +
+        std::to_string(aft) + " m of the sections aft of the first, which the winch never moves)");
+  }
 }
 
 bool Simulator::remesh(double t)

@@ -158,6 +158,8 @@ private:
   // The element lengths for the state y at time t: the first segment from the cable out, its rates from
   // the winch law (the model's as configured while the winch is off).
   ChainGeometry geometryOf(const StateVector& y) const;
+  // validate(winch_, cable) of the first section, with the limits less the sections aft of it.
+  void validateWinch() const;
   bool remesh(double t);  // split or merge the first segment
   // Segments of the first section now (the winch's: the sections aft of it keep theirs).
   int firstSectionSegments() const { return data_.geometry.segments - data_.geometry.aftSectionSegments(); }
