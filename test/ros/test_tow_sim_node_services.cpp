@@ -347,7 +347,7 @@ TEST(TowSimNode, BadConfigurationExitsNamingTheParameter)
 TEST(TowSimNode, ClockJumpingBackLaysTheCableOutAgain)
 {
   const double before = world->time_;
-  world->time_ -= 30.0;
+  world->setClockBack(30);
   // The nodes forget the ship and start again at the next odometry; their timers restart on the new clock:
   // the first steps need not find every node publishing (at most 0.5 s of wall time for each).
   world->advance(5.0, 0.5);

@@ -106,8 +106,7 @@ void World::waitForTheNodes()
       if (all)
         break;
     }
-    time_ += 0.01;
-    publishClock();
+    tickClock();
     if (++tick_ % 5 == 0)
     {
       odom_pub_.publish(shipOdometry());
@@ -130,8 +129,7 @@ void World::advance(double seconds, double wait)
     }
     for (int tick = 0; tick < 10; ++tick)
     {
-      time_ += 0.01;
-      publishClock();
+      tickClock();
       if (++tick_ % 5 == 0)
       {
         nav_msgs::Odometry odom = shipOdometry();
@@ -147,7 +145,7 @@ void World::advance(double seconds, double wait)
 nav_msgs::Odometry World::shipOdometry() const
 {
   nav_msgs::Odometry odom;
-  odom.header.stamp = ros::Time(time_);
+  odom.header.stamp.fromNSec(clock_ns_);
   odom.header.frame_id = "odom";
   odom.child_frame_id = "ship";
   odom.pose.pose.position.x = 2.0 * (time_ - 100.0);
@@ -208,10 +206,23 @@ void World::waitForEveryNode(const std::map<std::string, int>& before, double wa
   std::printf("late step at %.2f s: not every node published within %.1f s of wall time\n", time_, wait);
 }
 
+void World::tickClock()
+{
+  clock_ns_ += 10'000'000;
+  time_ = static_cast<double>(clock_ns_) * 1e-9;
+  publishClock();
+}
+
+void World::setClockBack(int seconds)
+{
+  clock_ns_ -= seconds * int64_t{ 1'000'000'000 };
+  time_ = static_cast<double>(clock_ns_) * 1e-9;
+}
+
 void World::publishClock()
 {
   rosgraph_msgs::Clock c;
-  c.clock = ros::Time(time_);
+  c.clock.fromNSec(clock_ns_);
   clock_pub_.publish(c);
 }
 

@@ -84,7 +84,8 @@ public:
   // later could miss every transform before its subscription is connected.
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_{ tf_buffer_ };
-  double time_ = 100.0;
+  double time_ = 100.0;            // [s] the clock, a whole number of nanoseconds (tickClock)
+  void setClockBack(int seconds);  // the next tick is that much earlier (rosbag play -l)
   ros::Publisher robust_odom_pub_, gps_odom_pub_;
   bool gps_fixed_ = false;  // the gps node has started on the zeros: its real track follows
 
@@ -92,6 +93,10 @@ private:
   void subscribeNode(const std::string& n);
   void subscribeDiagnostics();
   void waitForTheNodes();
+  // 10 ms on the clock, counted in nanoseconds: a double summed 0.01 s at a time drifts off the exact
+  // multiples, and a ROS timer due at one waits a tick more (issue 26, item 8).
+  void tickClock();
+  int64_t clock_ns_ = 100'000'000'000;
   void waitForEveryNode(const std::map<std::string, int>& before, double wait);
   void publishClock();
 
