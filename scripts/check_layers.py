@@ -27,7 +27,7 @@ LAYERS = [
     ["simulator"],
     ["equilibrium", "ship_track", "odometry_check", "depth_autopilot", "track_trail", "simulation_config"],
     ["tow_run"],
-    ["saved_state"],
+    ["saved_state", "live_run"],
 ]
 LAYER = {name: i for i, names in enumerate(LAYERS) for name in names}
 # Core sources that implement a header of another name.

@@ -61,6 +61,23 @@ std::invalid_argument withSlashes(const std::invalid_argument& e)
   return std::invalid_argument(message);
 }
 
+OdometryInput toOdometryInput(const nav_msgs::Odometry& msg)
+{
+  const auto& pose = msg.pose.pose;
+  OdometryInput in;
+  in.frame_id = msg.header.frame_id;
+  in.p_W = Eigen::Vector3d(pose.position.x, pose.position.y, pose.position.z);
+  in.q_wxyz = Eigen::Vector4d(pose.orientation.w, pose.orientation.x, pose.orientation.y, pose.orientation.z);
+  in.v_S = toEigen(msg.twist.twist.linear);
+  in.w_S = toEigen(msg.twist.twist.angular);
+  return in;
+}
+
+Eigen::Vector3d toEigen(const geometry_msgs::Vector3& v)
+{
+  return Eigen::Vector3d(v.x, v.y, v.z);
+}
+
 geometry_msgs::Point toPoint(const Eigen::Vector3d& v)
 {
   geometry_msgs::Point p;

@@ -11,11 +11,6 @@ namespace tow_sim
 {
 namespace
 {
-constexpr double kArrived = 0.05;  // [m] the winch is there within this of the planned cable out
-}  // namespace
-
-namespace
-{
 // Why a request cannot be answered ("" when it can).
 std::string refusal(const tow_sim::PlanCableOut::Request& req, bool ship_known, bool winch_enabled)
 {
@@ -63,7 +58,7 @@ void speedWindowAnswer(const SimulationConfig& c, double out_now, double height,
 bool TowSimNode::onPlanCableOut(tow_sim::PlanCableOut::Request& req, tow_sim::PlanCableOut::Response& res)
 {
   res.reachable = res.executing = res.window_found = false;
-  const std::string refused = refusal(req, !ship_->empty(), config_.winch.enabled);
+  const std::string refused = refusal(req, live_.shipKnown(), config_.winch.enabled);
   if (!refused.empty())
   {
     res.message = refused;
@@ -72,8 +67,8 @@ bool TowSimNode::onPlanCableOut(tow_sim::PlanCableOut::Request& req, tow_sim::Pl
   // The chart tows along +x from a tow point at the surface: the current (now: the topics may have changed
   // it) turned into the ship's heading, and the target measured from the tow point's height.
   SimulationConfig c = config_;
-  const Environment& now = started_ ? run_.simulator().data().environment : config_.environment;
-  const double heading = ship_->empty() ? 0.0 : ship_->pose(ship_->newestTime()).heading;
+  const Environment& now = live_.started() ? live_.run().simulator().data().environment : config_.environment;
+  const double heading = live_.newestShipPose().heading;
   const Eigen::Matrix3d to_ship = Eigen::AngleAxisd(-heading, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   c.environment.current_W = to_ship * now.current_W;
   c.environment.current_profile = now.current_profile;
@@ -83,7 +78,8 @@ bool TowSimNode::onPlanCableOut(tow_sim::PlanCableOut::Request& req, tow_sim::Pl
   std::ostringstream what;
   if (req.depth_min != 0.0 || req.depth_max != 0.0)
   {
-    speedWindowAnswer(c, started_ ? run_.simulator().cableLength() : c.cable.length, height, req, res, what);
+    speedWindowAnswer(c, live_.started() ? live_.run().simulator().cableLength() : c.cable.length, height, req, res,
+                      what);
     if (req.depth == 0.0)
     {
       res.message = what.str();
@@ -92,7 +88,7 @@ bool TowSimNode::onPlanCableOut(tow_sim::PlanCableOut::Request& req, tow_sim::Pl
     }
     what << "; ";
   }
-  const double speed = req.speed > 0.0 ? req.speed : ship_->pose(ship_->newestTime()).speed;
+  const double speed = req.speed > 0.0 ? req.speed : live_.newestShipPose().speed;
   const CableOutPlan plan = planCableOut(c, req.depth + height, speed, c.environment.current_W,
                                          config_.winch.min_length, config_.winch.max_length);
   res.reachable = plan.reachable;
@@ -106,45 +102,15 @@ bool TowSimNode::onPlanCableOut(tow_sim::PlanCableOut::Request& req, tow_sim::Pl
   res.tension_ship = plan.point.tension_ship;
   res.tension_vehicle = plan.point.tension_vehicle;
   what << plan.cable_out << " m out puts the vehicle at " << res.depth << " m at " << speed << " m/s";
-  if (req.execute && !started_)
-    what << "; not executed: no ship odometry yet";
-  else if (req.execute && run_.simulator().parted())
-    what << "; not executed: the cable has parted (~reset joins it again)";
-  else if (req.execute)
+  if (req.execute)
   {
-    winch_target_ = plan.cable_out;
-    res.executing = true;
-    what << "; the winch is on its way";
+    const std::string refused_now = live_.driveWinchTo(plan.cable_out);
+    res.executing = refused_now.empty();
+    what << (res.executing ? "; the winch is on its way" : "; not executed: " + refused_now);
   }
   res.message = what.str();
   ROS_INFO("tow_sim: plan_cable_out: %s", res.message.c_str());
   return true;
-}
-
-void TowSimNode::driveWinch()
-{
-  if (!winch_target_ || !config_.winch.enabled)
-    return;
-  if (run_.simulator().parted())  // the winch stopped with the parting: nothing to drive
-  {
-    winch_target_.reset();
-    ROS_WARN("tow_sim: the planned cable out is given up: the cable has parted");
-    return;
-  }
-  const double remaining = *winch_target_ - run_.simulator().cableLength();
-  if (std::abs(remaining) <= kArrived)
-  {
-    winch_target_.reset();
-    run_.setWinchCommand(0.0);
-    ROS_INFO("tow_sim: the winch has reached the planned cable out");
-    return;
-  }
-  // Payout rate = remaining length / (4 x the winch's response time), within max_rate: with the winch's own
-  // first-order lag the approach is critically damped. The command holds for a physics tick, so the time
-  // constant is at least two ticks (else the loop would hunt).
-  const double limit = config_.winch.max_rate;
-  const double time_constant = std::max(4.0 * config_.winch.response_time, 2.0 / params_.physics_rate);
-  run_.setWinchCommand(std::clamp(remaining / time_constant, -limit, limit));
 }
 
 }  // namespace tow_sim

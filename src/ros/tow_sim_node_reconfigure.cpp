@@ -23,7 +23,7 @@ std::optional<double> unsetAtZero(double v)
 void TowSimNode::setUpReconfigure()
 {
   reconfigure_ = std::make_unique<dynamic_reconfigure::Server<tow_sim::TowSimConfig>>(reconfigure_mutex_, pnh_);
-  reported_current_ = run_.simulator().data().environment.current_W;
+  reported_current_ = live_.run().simulator().data().environment.current_W;
   reconfigure_->updateConfig(liveConfig());  // the start-up values, not the generator's defaults
   reconfigure_->setCallback([this](tow_sim::TowSimConfig& c, uint32_t) { onReconfigure(c); });
 }
@@ -31,7 +31,7 @@ void TowSimNode::setUpReconfigure()
 tow_sim::TowSimConfig TowSimNode::liveConfig() const
 {
   tow_sim::TowSimConfig c;
-  const Eigen::Vector3d current = run_.simulator().data().environment.current_W;
+  const Eigen::Vector3d current = live_.run().simulator().data().environment.current_W;
   c.current_x = current.x();
   c.current_y = current.y();
   c.current_z = current.z();
@@ -70,7 +70,13 @@ void TowSimNode::onReconfigure(tow_sim::TowSimConfig& c)
     for (int i = 0; i < 3; ++i)
       requireInRange(prefix + axes[i], current[i], -20.0, 20.0, "[m/s]");
     // Valid: everything at once.
-    run_.setCurrent(current);
+    std::string why;
+    if (!live_.setCurrent(current, &why))  // counted there
+    {
+      ROS_ERROR("tow_sim: reconfigure refused: %s; every setting keeps its previous value", why.c_str());
+      c = liveConfig();
+      return;
+    }
     reported_current_ = current;
     if (params.publish_rate != params_.publish_rate)
       publish_timer_.setPeriod(ros::Duration(1.0 / params.publish_rate));
@@ -84,7 +90,7 @@ void TowSimNode::onReconfigure(tow_sim::TowSimConfig& c)
   }
   catch (const std::invalid_argument& e)
   {
-    ++rejected_messages_;
+    live_.countRejected();
     ROS_ERROR("tow_sim: reconfigure refused: %s; every setting keeps its previous value",
               ros_conv::withSlashes(e).what());
     c = liveConfig();
@@ -93,7 +99,7 @@ void TowSimNode::onReconfigure(tow_sim::TowSimConfig& c)
 
 void TowSimNode::reportCurrent()
 {
-  const Eigen::Vector3d current = run_.simulator().data().environment.current_W;
+  const Eigen::Vector3d current = live_.run().simulator().data().environment.current_W;
   if (!reconfigure_ || current == reported_current_)
     return;
   reported_current_ = current;

@@ -24,15 +24,15 @@ bool TowSimNode::onSaveState(tow_sim::StateFile::Request& req, tow_sim::StateFil
   res.success = false;
   if (req.path.empty())
     res.message = "path: must name the file to write";
-  else if (!started_)
+  else if (!live_.started())
     res.message = "no run to save yet (no ship odometry)";
   else
   {
     try
     {
-      writeRunState(req.path, run_.saveState());
+      writeRunState(req.path, live_.run().saveState());
       res.success = true;
-      res.message = "saved the state at t = " + timeText(absolute(run_.time()).toSec()) + " s to " + req.path;
+      res.message = "saved the state at t = " + timeText(stamp(live_.run().time()).toSec()) + " s to " + req.path;
       ROS_INFO("tow_sim: %s", res.message.c_str());
     }
     catch (const std::exception& e)
@@ -50,23 +50,18 @@ bool TowSimNode::onLoadState(tow_sim::StateFile::Request& req, tow_sim::StateFil
   res.success = false;
   if (req.path.empty())
     res.message = "path: must name a saved state file";
-  else if (ship_->empty())
+  else if (!live_.shipKnown())
     res.message = "no ship odometry yet: a state is placed at the ship";
   else
   {
     try
     {
-      // The saved shape relative to the tow point, turned with the ship's heading, at the run's time now.
-      const double t = started_ ? run_.time() : ship_->newestTime();
       const RunState saved = readRunState(req.path);
-      run_.restore(relocate(saved, t, ship_->towPoint(t), ship_->pose(t).heading));  // refused: nothing changed
-      diverging_ = false;
-      restart_walls_.clear();
-      winch_target_.reset();
-      afterStart();
+      live_.load(saved);  // refused: nothing changed
+      const double t = live_.run().time();
       res.success = true;
       res.message = "loaded " + req.path + " (saved at run time " + timeText(saved.sim.t) +
-                    " s) at t = " + timeText(absolute(t).toSec()) + " s, placed at the ship's pose now";
+                    " s) at t = " + timeText(stamp(t).toSec()) + " s, placed at the ship's pose now";
       ROS_INFO("tow_sim: %s", res.message.c_str());
     }
     catch (const std::exception& e)
@@ -90,7 +85,7 @@ void TowSimNode::noteParting(const TowSnapshot& snapshot)
     return;
   parting_ = snapshot.parting;
   tow_sim::CableParting msg;
-  msg.header.stamp = absolute(parting_->t);
+  msg.header.stamp = stamp(parting_->t);
   msg.header.frame_id = params_.world_frame;
   msg.joint = static_cast<uint32_t>(parting_->joint);
   msg.tension = parting_->tension;

@@ -22,6 +22,7 @@
 #include "tow_sim/CableState.h"
 #include "tow_sim/FinLoads.h"
 #include "tow_sim/config/param_yaml.h"
+#include "tow_sim/core/run/odometry_check.h"
 #include "tow_sim/core/run/tow_run.h"
 
 namespace tow_sim
@@ -54,6 +55,10 @@ S readPrivateParams(const ros::NodeHandle& pnh, const ParamTable<S>& table,
   }
   return params;
 }
+
+// Ship odometry as the live run's input (its time, t, is the live run's to set from the stamp).
+OdometryInput toOdometryInput(const nav_msgs::Odometry& msg);
+Eigen::Vector3d toEigen(const geometry_msgs::Vector3& v);
 
 geometry_msgs::Point toPoint(const Eigen::Vector3d& v);
 geometry_msgs::Vector3 toVector3(const Eigen::Vector3d& v);

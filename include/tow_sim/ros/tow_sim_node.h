@@ -1,7 +1,9 @@
-// The ROS adapter around a TowRun: ship odometry and fin commands in; cable state, markers, vehicle
-// odometry, fin loads, tf and diagnostics out (converted from the run's snapshots). Time comes from ros::Time (wall or
-// /clock); the simulation runs `odom_delay` behind it so that the ship's motion is interpolated between odometry
-// messages, and extrapolates at most `max_extrapolation` past the newest one before it holds.
+// The ROS adapter around a LiveRun (core/run/live_run.h, which holds the logic: pacing, restarts,
+// re-acquisition, interpolation at the clock, counters): ship odometry and commands in; cable state, markers,
+// vehicle odometry, fin loads, tf and diagnostics out (converted from the run's snapshots, ros/conversions.h).
+// Time comes from ros::Time (wall or /clock); the simulation runs `odom_delay` behind it so that the ship's
+// motion is interpolated between odometry messages, and extrapolates at most `max_extrapolation` past the
+// newest one before it holds.
 #pragma once
 
 #include <diagnostic_updater/diagnostic_updater.h>
@@ -13,8 +15,8 @@
 #include <std_srvs/Trigger.h>
 #include <tf2_ros/transform_broadcaster.h>
 
+#include <array>
 #include <cstdint>
-#include <deque>
 #include <memory>
 #include <optional>
 #include <string>
@@ -29,10 +31,8 @@
 #include "tow_sim/TowSimConfig.h"
 #include "tow_sim/config/config.h"
 #include "tow_sim/config/node_params.h"
-#include "tow_sim/core/run/odometry_check.h"
-#include "tow_sim/core/run/ship_track.h"
+#include "tow_sim/core/run/live_run.h"
 #include "tow_sim/core/run/tension_limits.h"
-#include "tow_sim/core/run/tow_run.h"
 #include "tow_sim/core/run/track_trail.h"
 
 namespace tow_sim
@@ -52,9 +52,8 @@ private:
   bool onReset(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
   bool onSetPaused(std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res);
   // ~plan_cable_out (tow_sim_node_planning.cpp): the towing chart's planner with this node's configuration
-  // and current; with `execute`, the winch goes to the planned cable out (driveWinch, each physics tick).
+  // and current; with `execute`, the winch goes to the planned cable out (LiveRun::driveWinchTo).
   bool onPlanCableOut(tow_sim::PlanCableOut::Request& req, tow_sim::PlanCableOut::Response& res);
-  void driveWinch();
   // ~save_state and ~load_state (tow_sim_node_state.cpp): the run's state to a file, and a saved one carried
   // to the ship's pose now (relocate) and continued; a refused file changes nothing.
   bool onSaveState(tow_sim::StateFile::Request& req, tow_sim::StateFile::Response& res);
@@ -67,8 +66,7 @@ private:
   // The current topic changed the current: the server's configuration follows (at the diagnostics' 1 Hz,
   // as each update writes every setting to the parameter server).
   void reportCurrent();
-  void physicsTick(const ros::TimerEvent& event);
-  void publishTick(const ros::TimerEvent& event);
+  void publishTick();
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
   // cable.safe_working_load and cable.breaking_load: checked at each output (a throttled log), the worst
   // since the previous report merged into the diagnostics' summary (WARN, ERROR) with its values.
@@ -80,19 +78,12 @@ private:
   void diagnoseParting(diagnostic_updater::DiagnosticStatusWrapper& status);
   void printStatus();  // the status line (print_status)
 
-  void start(double t);  // the initial shape at the ship's pose at time t (relative)
-  void afterStart();     // a new run (started or restored): the sea's clock, trails and outputs afresh
-  void restartAfterDivergence(const std::string& why);
-  void integrateTo(double target);          // [s] relative time; restarts after a divergence; diagnostics
-  void recordStep();                        // after_ (and before_ the previous after_) from the run now
-  void forgetShip(const std::string& why);  // drops the track; the next odometry lays the cable out again
-  // Times on the simulation's axis: seconds since time_origin_ns_, in 64-bit nanoseconds, so no stamp
-  // (zero, before the origin, ros::TIME_MAX) can make ros::Time arithmetic throw.
-  double relative(const ros::Time& stamp) const
-  {
-    return static_cast<double>(static_cast<int64_t>(stamp.toNSec()) - time_origin_ns_) * 1e-9;
-  }
-  ros::Time absolute(double t) const;
+  // A notice of the live run, logged at its level; the frequent kinds throttled (2 or 5 s each).
+  void say(const LiveNotice& notice);
+  void physicsTick();
+  // The clock now, and the run's time t [s] as a stamp.
+  static int64_t nowNs() { return static_cast<int64_t>(ros::Time::now().toNSec()); }
+  ros::Time stamp(double t) const;
   // Subscribes with `callback` guarded: no exception leaves a callback (the node runs on, says why).
   template <class M>
   ros::Subscriber subscribe(const std::string& topic, uint32_t queue,
@@ -101,44 +92,16 @@ private:
   ros::NodeHandle nh_, pnh_;
   NodeParams params_;
   SimulationConfig config_;
-  std::shared_ptr<ShipHistory> ship_;  // the accepted odometry, kept from the simulation's time on
-  TowRun run_;
-  OdometryLimits odometry_limits_;
-  TowSnapshot last_;        // the last published outputs (the status line prints them)
-  bool have_last_ = false;  // last_ is of the current run
-  // With an implicit stepper the run advances in the stepper's own steps, past the clock, and the outputs
-  // are published interpolated between the last two step ends (before_, after_).
-  bool whole_steps_ = false;
-  TrackReacquisition reacquisition_;  // after reacquire_after consistent jumps, the ship is started again
+  LiveRun live_;             // the run, the ship's history, the pacing and the counters (core/run/live_run.h)
+  TowSnapshot last_;         // the last published outputs (the status line prints them)
+  bool have_last_ = false;   // last_ is of the current run
+  uint64_t run_number_ = 0;  // live_'s run the outputs below are of
   std::unique_ptr<TrackTrail> ship_trail_, vehicle_trail_;  // drawn (none when trail_duration is 0)
-  TowSnapshot before_, after_;
-  bool have_after_ = false;  // after_ is of the current run
-  bool have_steps_ = false;  // and so is before_
-
-  int64_t time_origin_ns_ = 0;
   ros::Time last_tf_stamp_;
-  ros::Time last_clock_;  // ros::Time::now() at the previous physics tick, to see the clock jump back
-  bool started_ = false;  // false until the first odometry, and again after the clock jumps back
-  bool paused_ = false;
-  double last_odom_wall_ = 0.0;  // [s] wall time of the last accepted odometry
-
-  // Diagnostics.
-  double realtime_factor_ = 0.0;
-  double tick_cost_ = 0.0;  // [s/s] wall seconds per simulated second of the last physics tick
-  double lag_ = 0.0;
-  double physics_wall_ = 0.0;        // [s] wall time spent integrating since the last diagnostics report
-  uint64_t physics_steps_ = 0;       // accepted steps since the last diagnostics report
-  double last_diagnose_wall_ = 0.0;  // [s] wall time of the last diagnostics report
-  double physics_load_ = 0.0;        // [-] share of one core spent integrating, over the last report's interval
-  double steps_per_second_ = 0.0;    // [1/s] accepted steps per wall second, over the same interval
-  uint64_t rejected_steps_ = 0;
-  uint64_t rejected_messages_ = 0;
-  uint64_t restarts_ = 0;
-  std::deque<double> restart_walls_;  // [s] wall times of the recent restarts (at most kRestartBurst)
-  bool diverging_ = false;            // kRestartBurst restarts within kRestartWindow: holding until ~reset
-  double max_length_error_ = 0.0;     // [-] over the outputs since the last diagnostics report
-  TensionLimitCheck tension_limit_;   // the worst over the outputs since the last diagnostics report
-  bool holding_ = false;
+  int64_t tf_origin_ns_ = 0;  // live_'s time origin when last_tf_stamp_ was set
+  std::array<double, static_cast<size_t>(LiveNotice::Kind::kCount)> said_wall_{};  // [s] each kind last logged
+  LiveLoad load_;                    // over the last diagnostics report's interval
+  TensionLimitCheck tension_limit_;  // the worst over the outputs since the last diagnostics report
 
   ros::Subscriber odom_sub_, fin_sub_, current_sub_, current_profile_sub_, winch_sub_;
   ros::Publisher state_pub_, marker_pub_, vehicle_odom_pub_, fin_loads_pub_;
@@ -147,8 +110,6 @@ private:
   ros::Publisher parting_pub_;                         // cable/parting, latched
   std::optional<PartingEvent> parting_;                // the run's, once said
   ros::ServiceServer reset_srv_, pause_srv_, plan_srv_, save_srv_, load_srv_;
-  std::optional<double> winch_target_;  // [m] a planned cable out the winch is going to (cleared on arrival
-                                        // or by a winch/command)
   ros::Timer physics_timer_, publish_timer_, status_timer_;
   tf2_ros::TransformBroadcaster tf_broadcaster_;
   diagnostic_updater::Updater diagnostics_;

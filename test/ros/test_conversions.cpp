@@ -1,0 +1,140 @@
+// The node's conversions between messages and the core's types, without roscore: odometry into the live
+// run's input, snapshots into cable/state, vehicle/odom and the tow forces, and the tension colours. The
+// expected values are worked by hand from the frames' definitions (REP-103, REP-105).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "tow_sim/core/constants.h"
+#include "tow_sim/ros/conversions.h"
+
+namespace tow_sim
+{
+namespace
+{
+// A two-segment snapshot: joints along -x, the vehicle yawed 90 degrees (its x axis along world +y).
+TowSnapshot snapshot()
+{
+  TowSnapshot s;
+  s.segments = 2;
+  s.joints.resize(3, 3);
+  s.joints << 0.0, -10.0, -20.0, 0.0, 0.0, 0.0, 0.0, -1.0, -2.0;
+  s.tensions.resize(3, 3);
+  s.tensions << 100.0, 90.0, 80.0, 0.0, 0.0, 0.0, -50.0, -40.0, -30.0;
+  s.slack = { false, false, true };
+  s.vehicle.p_cg_W = Eigen::Vector3d(-21.0, 0.0, -2.0);
+  s.vehicle.v_cg_W = Eigen::Vector3d(0.0, 2.0, 0.0);
+  s.vehicle.omega_W = Eigen::Vector3d(0.0, 0.0, 0.1);
+  s.attitude = Eigen::Quaterniond(Eigen::AngleAxisd(kHalfPi, Eigen::Vector3d::UnitZ()));
+  return s;
+}
+
+std_msgs::Header header()
+{
+  std_msgs::Header h;
+  h.stamp.fromSec(12.5);
+  h.frame_id = "odom";
+  return h;
+}
+
+TEST(Conversions, OdometryBecomesTheLiveRunsInputFieldByField)
+{
+  nav_msgs::Odometry m;
+  m.header.frame_id = "odom";
+  m.pose.pose.position.x = 1.0;
+  m.pose.pose.position.y = 2.0;
+  m.pose.pose.position.z = 3.0;
+  m.pose.pose.orientation.w = 0.5;
+  m.pose.pose.orientation.x = 0.1;
+  m.pose.pose.orientation.y = 0.2;
+  m.pose.pose.orientation.z = 0.3;
+  m.twist.twist.linear.x = 4.0;
+  m.twist.twist.linear.y = 5.0;
+  m.twist.twist.linear.z = 6.0;
+  m.twist.twist.angular.x = 7.0;
+  m.twist.twist.angular.y = 8.0;
+  m.twist.twist.angular.z = 9.0;
+  const OdometryInput in = ros_conv::toOdometryInput(m);
+  EXPECT_EQ(in.frame_id, "odom");
+  EXPECT_EQ(in.p_W, Eigen::Vector3d(1.0, 2.0, 3.0));
+  EXPECT_EQ(in.q_wxyz, Eigen::Vector4d(0.5, 0.1, 0.2, 0.3));  // w first, as sent (not normalised here)
+  EXPECT_EQ(in.v_S, Eigen::Vector3d(4.0, 5.0, 6.0));          // the ship frame's, as REP-105 has it
+  EXPECT_EQ(in.w_S, Eigen::Vector3d(7.0, 8.0, 9.0));
+}
+
+TEST(Conversions, CableStateCarriesTheJointsAndEachTensionsSizeAndVector)
+{
+  const tow_sim::CableState c = ros_conv::toCableState(snapshot(), header());
+  ASSERT_EQ(c.joints.size(), 3u);
+  EXPECT_EQ(c.joints[2].x, -20.0);
+  EXPECT_EQ(c.joints[2].z, -2.0);
+  ASSERT_EQ(c.tension.size(), 3u);
+  EXPECT_DOUBLE_EQ(c.tension[0], std::hypot(100.0, 50.0));
+  EXPECT_EQ(c.tension_vector[1].z, -40.0);
+  EXPECT_EQ(c.slack, (std::vector<uint8_t>{ 0, 0, 1 }));
+  EXPECT_EQ(c.header.frame_id, "odom");
+}
+
+// vehicle/odom: the twist in the vehicle's own axes. Yawed 90 degrees, the world's +y is its forward x,
+// and a yaw rate about world z is one about its z.
+TEST(Conversions, VehicleOdometryHasItsTwistInTheVehicleFrame)
+{
+  const nav_msgs::Odometry o = ros_conv::toVehicleOdometry(snapshot(), header(), "fish");
+  EXPECT_EQ(o.child_frame_id, "fish");
+  EXPECT_EQ(o.pose.pose.position.x, -21.0);
+  EXPECT_NEAR(o.twist.twist.linear.x, 2.0, 1e-12);
+  EXPECT_NEAR(o.twist.twist.linear.y, 0.0, 1e-12);
+  EXPECT_NEAR(o.twist.twist.angular.z, 0.1, 1e-12);
+  EXPECT_NEAR(o.pose.pose.orientation.z, std::sin(kPi / 4.0), 1e-12);
+}
+
+// The ship feels -T_1 (the cable pulls it aft and down here); after a parting, the pull of the cable left
+// on it, none when none is left.
+TEST(Conversions, TheShipFeelsMinusT1AndAfterAPartingWhatHangsFromIt)
+{
+  TowSnapshot s = snapshot();
+  geometry_msgs::WrenchStamped w = ros_conv::toShipTowForce(s, header());
+  EXPECT_EQ(w.wrench.force.x, -100.0);
+  EXPECT_EQ(w.wrench.force.z, 50.0);
+  EXPECT_EQ(w.wrench.torque.x, 0.0);
+  s.parted = true;
+  w = ros_conv::toShipTowForce(s, header());
+  EXPECT_EQ(w.wrench.force.x, 0.0);
+  s.ship_side_tensions = Eigen::Matrix3Xd::Zero(3, 1);
+  s.ship_side_tensions.col(0) = Eigen::Vector3d(0.0, 0.0, 30.0);
+  w = ros_conv::toShipTowForce(s, header());
+  EXPECT_EQ(w.wrench.force.z, -30.0);
+}
+
+// The pull on the vehicle, T_{nu+1} at the bail, in the vehicle frame with its moment about the CG: the bail
+// 1 m ahead of the CG along world x (the vehicle's -y), the pull (80, 0, -30) N in the world.
+TEST(Conversions, TheVehicleFeelsTheLastTensionWithItsMomentAboutTheCG)
+{
+  const geometry_msgs::WrenchStamped w = ros_conv::toVehicleTowForce(snapshot(), header(), "fish");
+  EXPECT_EQ(w.header.frame_id, "fish");
+  // World (80, 0, -30) in axes x = world y, y = world -x, z = world z: (0, -80, -30).
+  EXPECT_NEAR(w.wrench.force.x, 0.0, 1e-12);
+  EXPECT_NEAR(w.wrench.force.y, -80.0, 1e-12);
+  EXPECT_NEAR(w.wrench.force.z, -30.0, 1e-12);
+  // Arm (1, 0, 0) x force (80, 0, -30) = (0, 30, 0) in the world; in the vehicle axes (30, 0, 0).
+  EXPECT_NEAR(w.wrench.torque.x, 30.0, 1e-12);
+  EXPECT_NEAR(w.wrench.torque.y, 0.0, 1e-12);
+}
+
+TEST(Conversions, TensionColoursRunBlueGreenRedAndMagentaForSlack)
+{
+  auto rgb = [](double t, bool slack)
+  {
+    const std_msgs::ColorRGBA c = ros_conv::tensionColor(t, 1000.0, slack);
+    return Eigen::Vector4d(c.r, c.g, c.b, c.a);
+  };
+  EXPECT_EQ(rgb(0.0, false), Eigen::Vector4d(0, 0, 1, 1));
+  EXPECT_EQ(rgb(500.0, false), Eigen::Vector4d(0, 1, 0, 1));
+  EXPECT_EQ(rgb(1000.0, false), Eigen::Vector4d(1, 0, 0, 1));
+  EXPECT_EQ(rgb(5000.0, false), Eigen::Vector4d(1, 0, 0, 1));
+  EXPECT_EQ(rgb(250.0, false), Eigen::Vector4d(0, 0.5, 0.5, 1));
+  EXPECT_EQ(rgb(500.0, true), Eigen::Vector4d(1, 0, 1, 1));
+}
+
+}  // namespace
+}  // namespace tow_sim
