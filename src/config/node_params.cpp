@@ -1,7 +1,12 @@
 #include "tow_sim/config/node_params.h"
 
+#include <algorithm>
+#include <cmath>
+#include <sstream>
 #include <stdexcept>
+#include <vector>
 
+#include "tow_sim/config/param_yaml.h"
 #include "tow_sim/core/constants.h"
 #include "tow_sim/core/param_tables.h"
 #include "tow_sim/core/run/depth_autopilot.h"
@@ -10,12 +15,13 @@ namespace tow_sim
 {
 namespace
 {
-// The node's and tow_sim_replay's world and vehicle frames: non-empty and different.
-void requireDistinctFrames(const std::string& world, const std::string& vehicle, const std::string& prefix)
+// A node's world frame and its child frame (`child_key`): non-empty and different.
+void requireDistinctFrames(const std::string& world, const std::string& child, const std::string& child_key,
+                           const std::string& prefix)
 {
-  if (world.empty() || vehicle.empty() || world == vehicle)
-    throw std::invalid_argument(prefix +
-                                "vehicle_frame: world_frame and vehicle_frame must be non-empty and different");
+  if (world.empty() || child.empty() || world == child)
+    throw std::invalid_argument(prefix + child_key + ": world_frame and " + child_key +
+                                " must be non-empty and different");
 }
 
 }  // namespace
@@ -71,7 +77,7 @@ const ParamTable<NodeParams>& nodeParams()
 void validate(const NodeParams& p, const std::string& prefix)
 {
   validateParams(nodeParams(), p, prefix);
-  requireDistinctFrames(p.world_frame, p.vehicle_frame, prefix);
+  requireDistinctFrames(p.world_frame, p.vehicle_frame, "vehicle_frame", prefix);
 }
 
 const ParamTable<AutopilotNodeParams>& autopilotNodeParams()
@@ -98,6 +104,68 @@ void validate(const AutopilotNodeParams& p, const std::string& prefix)
     throw std::invalid_argument(prefix + "world_frame: must be a non-empty string");
 }
 
+const ParamTable<ShipMotionParams>& shipMotionParams()
+{
+  using S = ShipMotionParams;
+  static const ParamTable<S> table =
+      ParamTable<S>()
+          .text("manoeuvre", &S::manoeuvre, "straight, turn, zigzag, speed_change or waypoints",
+                "the preset: turn after turn_start for good, zigzag from turn_start, speed_change at change_time, "
+                "waypoints in order (straight on after the last)")
+          .number("speed", &S::speed, "m/s", -15.0, 15.0, kClosed, "through the water (negative: astern)")
+          .number("speed_2", &S::speed_2, "m/s", -15.0, 15.0, kClosed, "speed_change: the speed after it")
+          .number("change_time", &S::change_time, "s", 0.0, 1e6, kClosed, "speed_change: when it begins")
+          .number("change_duration", &S::change_duration, "s", 0.0, 1e6, kOpen, "speed_change: over this time")
+          .number("turn_radius", &S::turn_radius, "m", -1e5, 1e5, kClosed,
+                  "turn, zigzag, waypoints: positive to port, magnitude at least 10 (zigzag: the swing's rate is "
+                  "speed / turn_radius, its amplitude that times zigzag_period / 4)")
+          .number("turn_start", &S::turn_start, "s", 0.0, 1e6, kClosed, "turn, zigzag: straight until then")
+          .number("zigzag_period", &S::zigzag_period, "s", 0.0, 1e6, kOpen, "zigzag: one full swing")
+          .number("waypoint_radius", &S::waypoint_radius, "m", 1.0, 1e4, kClosed, "waypoints: reached within this")
+          .custom("waypoints", "m", "[]", "x, y pairs", "waypoints: [x1, y1, x2, y2, …] world")
+          .number("heading", &S::heading, "rad", -10.0, 10.0, kClosed, "at the start, from +x toward +y")
+          .number("rate", &S::rate, "Hz", 1.0, 1000.0, kClosed, "ship/odom and tf")
+          .text("world_frame", &S::world_frame, "non-empty", "frame of ship/odom")
+          .text("ship_frame", &S::ship_frame, "≠ world_frame", "child frame of ship/odom and the tf")
+          .boolean("wave_response", &S::wave_response,
+                   "heave, roll and pitch by the RAOs in the configuration's environment.waves (false: level)")
+          .text("rao_file", &S::rao_file, "a CSV file, or empty", "the ship's RAOs (empty: the generic vessel's)");
+  return table;
+}
+
+void validate(const ShipMotionParams& p, const std::string& prefix)
+{
+  validateParams(shipMotionParams(), p, prefix);
+  const std::vector<std::string> known = { "straight", "turn", "zigzag", "speed_change", "waypoints" };
+  if (std::find(known.begin(), known.end(), p.manoeuvre) == known.end())
+    throw std::invalid_argument(prefix + "manoeuvre = '" + p.manoeuvre +
+                                "' must be straight, turn, zigzag, speed_change or waypoints");
+  if (!(std::abs(p.turn_radius) >= 10.0))
+  {
+    std::ostringstream why;
+    why << prefix << "turn_radius = " << p.turn_radius << " must have a magnitude in [10, 1e5] [m]";
+    throw std::invalid_argument(why.str());
+  }
+  if (p.manoeuvre == "waypoints" && p.waypoints.empty())
+    throw std::invalid_argument(prefix + "waypoints: the waypoints manoeuvre needs at least one [x, y] pair");
+  requireDistinctFrames(p.world_frame, p.ship_frame, "ship_frame", prefix);
+}
+
+ShipMotionParams readShipMotionParams(const YAML::Node& params, const std::string& name)
+{
+  ShipMotionParams p;
+  detail::ParamReader reader(detail::Section(params, name));
+  reader.read(shipMotionParams(), p);
+  const std::vector<double> points = reader.at("").list("waypoints");
+  if (points.size() % 2 != 0)
+    throw std::invalid_argument(name + ".waypoints must hold x, y pairs [m]: an even count of numbers, got " +
+                                std::to_string(points.size()));
+  for (size_t i = 0; i + 1 < points.size(); i += 2)
+    p.waypoints.emplace_back(points[i], points[i + 1]);
+  validate(p, name + ".");
+  return p;
+}
+
 const ParamTable<ReplayParams>& replayParams()
 {
   using R = ReplayParams;
@@ -120,7 +188,7 @@ void validate(const ReplayParams& p, const std::string& prefix)
   validateParams(replayParams(), p, prefix);
   if (p.run.empty())
     throw std::invalid_argument(prefix + "run: must name a tow_sim_batch output folder (with shapes.csv)");
-  requireDistinctFrames(p.world_frame, p.vehicle_frame, prefix);
+  requireDistinctFrames(p.world_frame, p.vehicle_frame, "vehicle_frame", prefix);
 }
 
 }  // namespace tow_sim

@@ -252,6 +252,7 @@ const std::map<std::string, std::function<std::string()>>& tables()
     { "node", [] { return markdown(nodeParams(), NodeParams()); } },
     { "autopilot_node", [] { return markdown(autopilotNodeParams(), AutopilotNodeParams()); } },
     { "replay_node", [] { return markdown(replayParams(), ReplayParams()); } },
+    { "ship_motion_node", [] { return markdown(shipMotionParams(), ShipMotionParams()); } },
     { "ship", [] { return markdown(shipParams(), Scenario()); } },
     { "manoeuvres", [] { return markdown(manoeuvreParams(), Manoeuvre()); } },
     { "commands", [] { return markdown(commandParams(), CommandEvent()); } },

@@ -142,4 +142,49 @@ void ScriptedShip::step(double dt, const Teleop* teleop)
   time_ += dt;
 }
 
+std::vector<Manoeuvre> presetManoeuvres(const ShipMotionParams& p)
+{
+  auto make = [&](Manoeuvre::Type type, double duration)
+  {
+    Manoeuvre m;
+    m.type = type;
+    m.speed = p.speed;
+    m.duration = duration;
+    m.radius = std::abs(p.turn_radius);
+    m.direction = p.turn_radius > 0.0 ? 1 : -1;
+    return m;
+  };
+  std::vector<Manoeuvre> list;
+  const bool delayed = p.manoeuvre == "turn" || p.manoeuvre == "zigzag";
+  if (delayed && p.turn_start > 0.0)
+    list.push_back(make(Manoeuvre::Type::kStraight, p.turn_start));
+  if (p.manoeuvre == "turn")
+  {
+    list.push_back(make(Manoeuvre::Type::kTurn, 0.0));
+    list.back().angle = 1e9;  // [rad] turning for good (1.6e8 turns)
+  }
+  else if (p.manoeuvre == "zigzag")
+  {
+    list.push_back(make(Manoeuvre::Type::kZigzag, 0.0));
+    list.back().angle = std::abs(p.speed) / std::abs(p.turn_radius) * p.zigzag_period / 4.0;
+    list.back().legs = 1000;
+  }
+  else if (p.manoeuvre == "speed_change")
+  {
+    list.push_back(make(Manoeuvre::Type::kStraight, std::max(p.change_time, 1e-3)));
+    list.push_back(make(Manoeuvre::Type::kSpeedChange, p.change_duration));
+    list.back().to_speed = p.speed_2;
+  }
+  else if (p.manoeuvre == "waypoints")
+  {
+    list.push_back(make(Manoeuvre::Type::kWaypoints, 0.0));
+    list.back().acceptance = p.waypoint_radius;
+    list.back().points = p.waypoints;
+  }
+  list.push_back(make(Manoeuvre::Type::kStraight, 1e6));
+  if (p.manoeuvre == "speed_change")
+    list.back().speed = p.speed_2;
+  return list;
+}
+
 }  // namespace tow_sim

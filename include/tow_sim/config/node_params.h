@@ -3,8 +3,10 @@
 // roscore; the nodes read them from their private namespace through the same YAML reader.
 #pragma once
 
+#include <yaml-cpp/yaml.h>
 #include <Eigen/Core>
 #include <string>
+#include <vector>
 
 #include "tow_sim/core/param_table.h"
 #include "tow_sim/core/run/depth_autopilot.h"
@@ -52,6 +54,32 @@ struct AutopilotNodeParams
 };
 const ParamTable<AutopilotNodeParams>& autopilotNodeParams();
 void validate(const AutopilotNodeParams& params, const std::string& prefix);
+
+// ship_motion_node: a scripted ship (the scenarios' manoeuvre law) publishing ship/odom and tf.
+struct ShipMotionParams
+{
+  std::string manoeuvre = "straight";      // straight | turn | zigzag | speed_change | waypoints
+  double speed = 2.0;                      // [m/s] through the water, negative astern
+  double speed_2 = 1.0;                    // [m/s] speed_change: the speed after the change
+  double change_time = 120.0;              // [s] speed_change: when it begins
+  double change_duration = 30.0;           // [s] speed_change: over this time
+  double turn_radius = 200.0;              // [m] turn, zigzag, waypoints: positive to port; |.| in [10, 1e5]
+  double turn_start = 120.0;               // [s] turn, zigzag: straight until then
+  double zigzag_period = 240.0;            // [s] zigzag: one full swing
+  double waypoint_radius = 30.0;           // [m] waypoints: reached within this
+  std::vector<Eigen::Vector2d> waypoints;  // [m] world x, y (the waypoints manoeuvre needs one at least)
+  double heading = 0.0;                    // [rad] at the start, from +x toward +y
+  double rate = 20.0;                      // [Hz] ship/odom and tf
+  std::string world_frame = "odom";
+  std::string ship_frame = "ship";
+  bool wave_response = true;  // heave, roll and pitch in the configuration's waves (false: level)
+  std::string rao_file;       // the ship's RAOs as CSV ("": the generic vessel's)
+};
+const ParamTable<ShipMotionParams>& shipMotionParams();
+void validate(const ShipMotionParams& params, const std::string& prefix);
+// From a YAML mapping (the node's private namespace as YAML): the table's keys and the waypoints, then
+// validate(). Errors name "<name>.<key>"; keys of other readers are left alone.
+ShipMotionParams readShipMotionParams(const YAML::Node& params, const std::string& name);
 
 // tow_sim_replay: a batch run's shapes replayed into rviz on its own clock.
 struct ReplayParams

@@ -15,6 +15,7 @@
 
 #include <vector>
 
+#include "tow_sim/config/node_params.h"
 #include "tow_sim/scenario/scenario.h"
 
 namespace tow_sim
@@ -64,5 +65,10 @@ private:
   int leg_ = 0;               // zigzag leg or waypoint index
   bool teleop_ = false;       // the previous step was under teleop
 };
+
+// ship_motion_node's preset (~manoeuvre and its parameters) as a list of manoeuvres, straight on for ever
+// (1e6 s) after it: a turn turns for good (1e9 rad), a zigzag swings speed / |turn_radius| x zigzag_period / 4
+// about its course for 1000 legs, a speed change follows change_time straight.
+std::vector<Manoeuvre> presetManoeuvres(const ShipMotionParams& p);
 
 }  // namespace tow_sim
