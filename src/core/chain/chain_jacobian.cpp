@@ -65,6 +65,7 @@ void segmentJacobian(const ChainModel& model, int e, double t, const ElementKine
                            dw_dx += arm * df_dp * at;
                          });
   }
+  // (S16): D = d(h_f, h_a)/d(v_f, v_a), K = d(h_f, h_a)/d(x_f, x_a), the wrench's derivatives projected as (S5).
   const Matrix6d J = jointMap(k.s, k.length, 0.5);
   out.dh_dv = J.transpose() * dw_dv;
   out.dh_dx = J.transpose() * dw_dx;

@@ -53,8 +53,8 @@ Eigen::Vector3d ChainSolver::solveFree(const ChainModel& model, const ChainGeome
   return sweep_.solveFree(terms_, a, tensions, multipliers, first_force);
 }
 
-// (S1)-(S6): each element's loads (ChainModel::elementDynamics) and its Newton-Euler equations projected
-// onto its forward and aft joint accelerations.
+// (S1)-(S6): each element's loads (ChainModel::elementDynamics) and its Newton-Euler equations (S2) projected
+// onto its forward and aft joint accelerations, the terms of (S3) (forward joint) and (S4) (aft joint).
 void ChainSolver::elementTerms(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data, double t,
                                const ShipEndState& ship, const Eigen::Ref<const Eigen::Matrix3Xd>& x,
                                const Eigen::Ref<const Eigen::Matrix3Xd>& v)
@@ -72,7 +72,8 @@ void ChainSolver::elementTerms(const ChainModel& model, const ChainGeometry& geo
     if (e == 0 && geometry.first_rate != 0.0)
       body.wrench -= body.mass.rightCols<3>() * (-2.0 * geometry.first_rate / k.length * k.omega);
 
-    // (S1): [a_G; dw/dt] = J_f a_f + J_a a_a; (S5): the projected inertia and loads.
+    // (S1): [a_G; dw/dt] = J_f a_f + J_a a_a; (S5): the projected inertia and loads, M_f* and h_f of (S3),
+    // M_a* and h_a of (S4).
     const Matrix6d J = jointMap(k.s, k.length, body.cg_fraction);
     const Matrix6d MJ = body.mass * J;
     ElementTerms& m = terms_[static_cast<size_t>(e)];

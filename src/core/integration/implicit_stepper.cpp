@@ -31,6 +31,8 @@ void ImplicitStepper::linearise(const ChainModel& model, const ChainGeometry& ge
   h_ = 0.0;  // factor() must follow
 }
 
+// (S19): the stage matrix N = M - gamma h D - (gamma h)^2 K per element, with D = dh/dv and K = dh/dx of
+// (S16); the sweep's matrix pass then factors (S18) as it does (S3)-(S6).
 void ImplicitStepper::factor(double h)
 {
   const double gh = gamma_ * h, gh2 = gh * gh;
@@ -57,9 +59,10 @@ void ImplicitStepper::solve(const std::vector<double>& r, const TowPointRates& t
   const auto r_v = L.velocities(r);
   for (size_t i = 0; i < stage_.size(); ++i)
   {
-    // g = M r_v + gamma h K r_x over the element's two joints. For the tow point, whose K is known, the
-    // same form holds with r_v = K_v (its acceleration increment is not an unknown: K_v - r_v = 0) and
-    // r_x = K_x - gamma h K_v.
+    // (S19): g = M r_v + gamma h K r_x over the element's two joints, c' = s.(r_v,a - r_v,f): the loads and
+    // the constraint of (S18), the linearised element (S17) scaled by gamma h. For the tow point, whose K is
+    // known, the same form holds with r_v = K_v (its acceleration increment is not an unknown: K_v - r_v = 0)
+    // and r_x = K_x - gamma h K_v.
     const Eigen::Index e = static_cast<Eigen::Index>(i);
     const Eigen::Vector3d rv_f = e == 0 ? tow.v : Eigen::Vector3d(r_v.col(e - 1));
     const Eigen::Vector3d rx_f = e == 0 ? Eigen::Vector3d(tow.x - gh * tow.v) : Eigen::Vector3d(r_x.col(e - 1));
@@ -77,7 +80,7 @@ void ImplicitStepper::solve(const std::vector<double>& r, const TowPointRates& t
   K_v_.resize(3, L.joints);
   sweep_.solve(stage_, tow.v, K_v_);
   L.velocities(K) = K_v_;
-  L.positions(K) = r_x + gh * K_v_;
+  L.positions(K) = r_x + gh * K_v_;  // K_x = r_x + gamma h K_v (docs/solver.md §7)
   // The winch: [1, -gh; -gh a_L, 1 - gh a_R] (K_L, K_R) = (r_L, r_R).
   const double r_L = L.cableOut(r), r_R = L.payoutRate(r);
   const double det = (1.0 - gh * winch_d_rate_) - gh * gh * winch_d_length_;

@@ -86,8 +86,9 @@ double Simulator::errorNorm(const StateVector& error, const StateVector& y_next,
   return std::sqrt(sum / count);
 }
 
-// The stages of the tableau (rosenbrock_tableau.h) for the step h, factored: y_next_ and error_. The tow
-// point's increments in stage i are K_t,i (v, a) at t (implicit_stepper.h).
+// The stages (S15) of the tableau (rosenbrock_tableau.h) for the step h, factored: y_next_ and error_:
+// W K_i = f(t + c_i h, y + h sum a_ij K_j) + sum c_ij K_j, each solved by ImplicitStepper::solve in O(nu).
+// The tow point's increments in stage i are K_t,i (v, a) at t (implicit_stepper.h).
 void Simulator::implicitStages(double h)
 {
   const RosenbrockTableau& rw = *tableau_;

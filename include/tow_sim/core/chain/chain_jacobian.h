@@ -1,5 +1,5 @@
-// Derivatives of the chain's element loads, for the implicit stepper's stage matrix
-// N = M - gamma h D - (gamma h)^2 K (docs/solver.md §7).
+// Derivatives of the chain's element loads (S16), for the implicit stepper's stage matrix
+// N = M - gamma h D - (gamma h)^2 K (S19) (docs/solver.md §7).
 #pragma once
 
 #include "tow_sim/core/chain/chain_model.h"

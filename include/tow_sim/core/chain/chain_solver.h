@@ -19,9 +19,9 @@
 
 namespace tow_sim
 {
-// One element's equations on its joints (docs/solver.md §2): M_ff a_f + M_fa a_a - h_f = T_fwd - mu s,
-// M_af a_f + M_aa a_a - h_a = -T_aft + mu s, s.(a_a - a_f) = c. The implicit stepper's stage equations have
-// the same form (M -> N, h -> g: docs/solver.md §7).
+// One element's equations on its joints (docs/solver.md §2): M_ff a_f + M_fa a_a - h_f = T_fwd - mu s (S3),
+// M_af a_f + M_aa a_a - h_a = -T_aft + mu s (S4), s.(a_a - a_f) = c (S6). The implicit stepper's stage equations have
+// the same form (M -> N, h -> g, c -> c': (S18)-(S19), docs/solver.md §7).
 struct ElementTerms
 {
   Eigen::Matrix3d M_ff, M_fa, M_af, M_aa;  // projected inertia (S5) [kg]

@@ -1,14 +1,16 @@
 // The linearly implicit step's stage solve (docs/solver.md §7). The Rosenbrock-W methods (ROS34PW2 by
 // default, ROS2; rosenbrock_tableau.h, whose stage loop is in simulator_implicit.cpp) solve each stage
 // with the same matrix W = I - gamma h J:
-//   W K_i = f(t + c_i h, y + h sum a_ij K_j) + sum c_ij K_j + gamma h K_t,i df/dt.
+//   W K_i = f(t + c_i h, y + h sum a_ij K_j) + sum c_ij K_j + gamma h K_t,i df/dt.            (S15)
 // J is an approximation of the right-hand side's Jacobian taken once per step (a W-method keeps its order
 // with any J). Each stage solve (I - gamma h J) K = r costs O(nu): with K = (K_x, K_v) for the positions
 // and velocities, K_x = r_x + gamma h K_v, and K_v with the multipliers solves equations of the solver's
 // own form, element by element,
 //   N_ff K_f + N_fa K_a - g_f = T_fwd - mu s,  N_af K_f + N_aa K_a - g_a = -T_aft + mu s,  s.(K_a - K_f) = c',
-//   N = M - gamma h D - (gamma h)^2 K,  g = M r_v + gamma h K r_x,  c' = s.(r_v,a - r_v,f),
-// (M the projected inertia, D and K the load derivatives of chain_jacobian.h), so ChainSweep solves them:
+//                                                                                               (S18)
+//   N = M - gamma h D - (gamma h)^2 K,  g = M r_v + gamma h K r_x,  c' = s.(r_v,a - r_v,f),       (S19)
+// (the linearised element (S17) scaled by gamma h; M the projected inertia, D and K the load derivatives
+// (S16) of chain_jacobian.h), so ChainSweep solves them:
 // the matrix pass once per step size, a vector pass per stage. The winch's cable out and rate form their
 // own 2 x 2 block.
 // The right-hand side depends on time through the tow point x_1, which moves as the ship says. The

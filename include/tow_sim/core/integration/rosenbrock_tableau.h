@@ -1,5 +1,5 @@
 // Rosenbrock-W tableaus in the form the implicit stepper uses (docs/solver.md §7):
-//   W K_i = f(t + c_i h, y + h sum_{j<i} a_ij K_j) + sum_{j<i} c_ij K_j + gamma h K_t,i df/dt,
+//   W K_i = f(t + c_i h, y + h sum_{j<i} a_ij K_j) + sum_{j<i} c_ij K_j + gamma h K_t,i df/dt,   (S15)
 //   W = I - gamma h J,  K_t,i = 1 + sum_{j<i} c_ij K_t,j,
 //   y_next = y + h sum_i m_i K_i,  error = h sum_i e_i K_i (y_next less the embedded solution),
 // which needs no product with J outside the stage matrix. A method published in the standard form
