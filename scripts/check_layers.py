@@ -18,12 +18,12 @@ import sys
 LIBRARIES = ["core", "config", "scenario", "ros"]
 LAYERS = [
     ["constants", "geometry", "param_table"],
-    ["waves", "params", "param_tables", "numeric_csv", "winch", "tension_limits"],
+    ["waves", "params", "param_tables", "numeric_csv", "tension_limits"],
     ["fins", "seabed", "element", "ship_response"],
     ["added_mass", "vehicle"],
     ["chain_model"],
-    ["chain_state", "chain_solver", "chain_jacobian", "rosenbrock_tableau", "run_report"],
-    ["implicit_stepper"],
+    ["chain_state", "chain_solver", "chain_jacobian", "rosenbrock_tableau", "run_report", "winch"],
+    ["implicit_stepper", "explicit_stepper"],
     ["simulator"],
     ["equilibrium", "ship_track", "odometry_check", "depth_autopilot", "track_trail", "simulation_config"],
     ["tow_run"],

@@ -1,6 +1,7 @@
 #include "tow_sim/core/integration/implicit_stepper.h"
 
-#include "tow_sim/core/chain/chain_state.h"
+#include <algorithm>
+#include <cmath>
 
 namespace tow_sim
 {
@@ -86,6 +87,81 @@ void ImplicitStepper::solve(const std::vector<double>& r, const TowPointRates& t
   const double det = (1.0 - gh * winch_d_rate_) - gh * gh * winch_d_length_;
   L.payoutRate(K) = (r_R + gh * winch_d_length_ * r_L) / det;
   L.cableOut(K) = r_L + gh * L.payoutRate(K);
+}
+
+// (S15): W K_i = f(t + c_i h, y + h sum_{j<i} a_ij K_j) + sum_{j<i} c_ij K_j (+ the tow point's K_t,i (v, a)),
+// each solved in O(nu) by solve(); y_next = y + h sum m_i K_i, error = h sum e_i K_i.
+void ImplicitStepper::stages(const RosenbrockTableau& rw, double t, double h, const std::vector<double>& y,
+                             const std::vector<double>& f0, const ShipEndState& ship, const Derivative& f,
+                             std::vector<double>& y_next, std::vector<double>& error)
+{
+  const size_t n = y.size();
+  stage_k_.resize(rw.stages);
+  stage_y_.resize(n);
+  stage_f_.resize(n);
+  double K_t[RosenbrockTableau::kMaxStages];
+  for (int i = 0; i < rw.stages; ++i)
+  {
+    double t_stage = t;
+    K_t[i] = 1.0;
+    if (i == 0)
+      stage_f_ = f0;
+    else
+    {
+      stage_y_ = y;
+      for (int j = 0; j < i; ++j)
+      {
+        t_stage += h * rw.a[i][j] * K_t[j];
+        K_t[i] += rw.c[i][j] * K_t[j];
+        if (rw.a[i][j] != 0.0)
+          for (size_t q = 0; q < n; ++q)
+            stage_y_[q] += h * rw.a[i][j] * stage_k_[j][q];
+      }
+      f(t_stage, stage_y_, stage_f_);
+      for (int j = 0; j < i; ++j)
+        for (size_t q = 0; q < n; ++q)
+          stage_f_[q] += rw.c[i][j] * stage_k_[j][q];
+    }
+    solve(stage_f_, TowPointRates{ K_t[i] * ship.v_W, K_t[i] * ship.a_W }, stage_k_[i]);
+  }
+  y_next = y;
+  error.assign(n, 0.0);
+  for (int i = 0; i < rw.stages; ++i)
+    for (size_t q = 0; q < n; ++q)
+    {
+      y_next[q] += h * rw.m[i] * stage_k_[i][q];
+      error[q] += h * rw.e[i] * stage_k_[i][q];
+    }
+}
+
+double implicitErrorNorm(const NumericsParams& num, const StateLayout& L, bool winch, const std::vector<double>& error,
+                         const std::vector<double>& y, const std::vector<double>& y_next, const Eigen::Vector3d& p0,
+                         const Eigen::Vector3d& p1)
+{
+  const auto e_x = L.positions(error), e_v = L.velocities(error);
+  const auto x0 = L.positions(y), x1 = L.positions(y_next);
+  const auto v0 = L.velocities(y), v1 = L.velocities(y_next);
+  double sum = 0.0;
+  for (int j = 0; j < L.joints; ++j)
+    for (int i = 0; i < 3; ++i)
+    {
+      const double scale_x = num.implicit_position_tol +
+                             num.implicit_rel_tol * std::max(std::abs(x0(i, j) - p0[i]), std::abs(x1(i, j) - p1[i]));
+      const double scale_v =
+          num.implicit_velocity_tol + num.implicit_rel_tol * std::max(std::abs(v0(i, j)), std::abs(v1(i, j)));
+      sum += std::pow(e_x(i, j) / scale_x, 2) + std::pow(e_v(i, j) / scale_v, 2);
+    }
+  double count = 6.0 * L.joints;
+  if (winch)
+  {
+    const double scale_l = num.implicit_position_tol +
+                           num.implicit_rel_tol * std::max(std::abs(L.cableOut(y)), std::abs(L.cableOut(y_next)));
+    const double scale_r = num.implicit_velocity_tol +
+                           num.implicit_rel_tol * std::max(std::abs(L.payoutRate(y)), std::abs(L.payoutRate(y_next)));
+    sum += std::pow(L.cableOut(error) / scale_l, 2) + std::pow(L.payoutRate(error) / scale_r, 2);
+    count += 2.0;
+  }
+  return std::sqrt(sum / count);
 }
 
 }  // namespace tow_sim

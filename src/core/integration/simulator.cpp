@@ -2,7 +2,6 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
-#include <boost/numeric/odeint.hpp>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -12,8 +11,6 @@
 
 namespace tow_sim
 {
-namespace odeint = boost::numeric::odeint;
-
 namespace
 {
 // A joint moving faster than this relative to the tow point [m/s] means the integration ran away.
@@ -35,16 +32,6 @@ ShipMotion constantVelocityShip(const Eigen::Vector3d& p0_W, const Eigen::Vector
     return s;
   };
 }
-
-struct Simulator::Steppers
-{
-  using Dopri5 = odeint::runge_kutta_dopri5<StateVector>;
-  explicit Steppers(const NumericsParams& num) : controlled(odeint::make_controlled(num.abs_tol, num.rel_tol, Dopri5()))
-  {
-  }
-  odeint::controlled_runge_kutta<Dopri5> controlled;
-  odeint::runge_kutta4<StateVector> rk4;
-};
 
 Simulator::Simulator(std::shared_ptr<const ChainModel> model, ShipMotion ship, const WinchParams& winch)
     : model_(std::move(model)), ship_(std::move(ship)), winch_(winch)
@@ -156,74 +143,10 @@ bool Simulator::remesh(double t)
 {
   if (!winch_.enabled || free_)
     return false;
-  // One pass in one direction: split while the first segment is above the band, or merge while it is
-  // below. The first segment's length is carried from split to split (not recomputed from the cable out,
-  // whose rounding could put it on both sides of the band at once), and a call never turns back.
-  // A relative margin of 1e-6 on both edges: with max >= min + 1 a split then lands strictly above the
-  // merge edge and a merge strictly below the split edge, whatever the rounding.
-  const double d = data_.geometry.nominal_length;
-  const double split_above = winch_.segment_max_fraction * d * (1.0 + 1e-6);
-  const double merge_below = winch_.segment_min_fraction * d * (1.0 - 1e-6);
-  const bool split = data_.geometry.first_length > split_above;
-  const bool merge = !split && data_.geometry.first_length < merge_below && firstSectionSegments() >= 2;
-  if (!split && !merge)
+  if (!remeshFirstSegment(winch_, ship_(t), data_.geometry, y_))
     return false;
-  for (int pass = 0; pass < 100000; ++pass)
-  {
-    if (split && data_.geometry.first_length > split_above)
-      splitFirstSegment(t);
-    else if (merge && data_.geometry.first_length < merge_below && firstSectionSegments() >= 2)
-      mergeFirstSegment();
-    else
-      break;
-  }
+  dydt_.assign(y_.size(), 0.0);
   return true;
-}
-
-void Simulator::splitFirstSegment(double t)
-{
-  // A new joint on the first segment, d from its aft end. It moves as a point of the rigid segment across
-  // the flow and with the aft joint along it (that part keeps its length d).
-  const ShipEndState ship = ship_(t);
-  const StateLayout L = layout(), next_layout{ L.joints + 1 };
-  const double d = data_.geometry.nominal_length, first = data_.geometry.first_length;
-  const auto x = L.positions(y_);
-  const auto v = L.velocities(y_);
-  const Eigen::Vector3d axis = x.col(0) - ship.p_W;
-  const Eigen::Vector3d s = axis.normalized();
-  const double eta = (first - d) / first;
-  Eigen::Vector3d w = ship.v_W + eta * (v.col(0) - ship.v_W);
-  w += s.dot(v.col(0) - w) * s;
-  StateVector next(next_layout.size());
-  auto nx = next_layout.positions(next);
-  auto nv = next_layout.velocities(next);
-  nx.col(0) = ship.p_W + eta * axis;
-  nv.col(0) = w;
-  nx.rightCols(L.joints) = x;
-  nv.rightCols(L.joints) = v;
-  next_layout.cableOut(next) = L.cableOut(y_);
-  next_layout.payoutRate(next) = L.payoutRate(y_);
-  data_.geometry.segments += 1;
-  data_.geometry.first_length = first - d;
-  y_.swap(next);
-  dydt_.assign(y_.size(), 0.0);
-}
-
-void Simulator::mergeFirstSegment()
-{
-  // Merge the first segment into the second: drop joint x_2. The new first segment runs straight from the
-  // tow point to x_3; its length is the sum, so mass is kept; the projection then restores that length (a
-  // shift of second order in the kink at x_2).
-  const StateLayout L = layout(), next_layout{ L.joints - 1 };
-  StateVector next(next_layout.size());
-  next_layout.positions(next) = L.positions(y_).rightCols(L.joints - 1);
-  next_layout.velocities(next) = L.velocities(y_).rightCols(L.joints - 1);
-  next_layout.cableOut(next) = L.cableOut(y_);
-  next_layout.payoutRate(next) = L.payoutRate(y_);
-  data_.geometry.segments -= 1;
-  data_.geometry.first_length += data_.geometry.nominal_length;
-  y_.swap(next);
-  dydt_.assign(y_.size(), 0.0);
 }
 
 void Simulator::restoreLayout(int segments, double cable_out)
@@ -417,7 +340,7 @@ StepReport Simulator::advanceTo(double t_end)
     os << "advanceTo: target time " << t_end << " s is before the current time " << t_ << " s";
     throw std::invalid_argument(os.str());
   }
-  steppers_ = std::make_unique<Steppers>(model_->numerics());
+  explicit_ = std::make_unique<ExplicitStepper>(model_->numerics());
   // The commands, the current or the thrust may have changed since the last step: the derivative the
   // first step starts from (k1, first-same-as-last) is taken afresh.
   refreshOutputs();
@@ -435,7 +358,8 @@ StepReport Simulator::advanceTo(double t_end)
 void Simulator::stepOnce(double t_end, double winch_step, StepReport& report)
 {
   const NumericsParams& num = model_->numerics();
-  auto system = [this](const StateVector& y, StateVector& dydt, double t) { derivative(t, y, dydt); };
+  const ExplicitStepper::System system = [this](const StateVector& y, StateVector& dydt, double t)
+  { derivative(t, y, dydt); };
   const StateVector y_prev = y_;
   const double t_prev = t_;
   if (implicit())
@@ -446,7 +370,7 @@ void Simulator::stepOnce(double t_end, double winch_step, StepReport& report)
   else if (stepper() == StepperType::kRk4)
   {
     const double h = std::min({ num.fixed_step, winch_step, t_end - t_ });
-    steppers_->rk4.do_step(system, y_, dydt_, t_, h);
+    explicit_->rk4(system, y_, dydt_, t_, h);
     t_ = h == t_end - t_ ? t_end : t_ + h;
   }
   else
@@ -455,7 +379,7 @@ void Simulator::stepOnce(double t_end, double winch_step, StepReport& report)
     const bool clamped = dt_ >= remaining;
     double h = std::min({ dt_, remaining, num.max_step, winch_step });
     // dopri5 is first-same-as-last: dydt_ holds f(y_) and is advanced with the step.
-    if (steppers_->controlled.try_step(system, y_, dydt_, t_, h) == odeint::fail)
+    if (!explicit_->dopri5(system, y_, dydt_, t_, h))
     {
       ++report.rejected;
       dt_ = h;
@@ -497,7 +421,7 @@ void Simulator::acceptStep(StepReport& report)
   countSnaps(report);
   checkBreak(report);
   if (y_.size() != size)  // re-meshed or parted: odeint sizes its buffers once
-    steppers_ = std::make_unique<Steppers>(model_->numerics());
+    explicit_ = std::make_unique<ExplicitStepper>(model_->numerics());
 }
 
 ElementKinematics Simulator::elementKinematics(int e) const

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tow_sim/core/chain/chain_state.h"
+
 namespace tow_sim
 {
 double winchAcceleration(const WinchParams& winch, double command, double length, double rate)
@@ -21,6 +23,80 @@ double winchAcceleration(const WinchParams& winch, double command, double length
   target = std::min({ target, std::sqrt(a * to_max), k * to_max });
   target = std::max({ target, -std::sqrt(a * to_min), -k * to_min });
   return std::clamp((target - rate) / tau, -a, a);
+}
+
+namespace
+{
+// A new joint on the first segment, d from its aft end. It moves as a point of the rigid segment across the
+// flow and with the aft joint along it (that part keeps its length d).
+void splitFirstSegment(const ShipEndState& ship, ChainGeometry& geometry, std::vector<double>& y)
+{
+  const StateLayout L{ geometry.jointCount() }, next_layout{ L.joints + 1 };
+  const double d = geometry.nominal_length, first = geometry.first_length;
+  const auto x = L.positions(y);
+  const auto v = L.velocities(y);
+  const Eigen::Vector3d axis = x.col(0) - ship.p_W;
+  const Eigen::Vector3d s = axis.normalized();
+  const double eta = (first - d) / first;
+  Eigen::Vector3d w = ship.v_W + eta * (v.col(0) - ship.v_W);
+  w += s.dot(v.col(0) - w) * s;
+  std::vector<double> next(next_layout.size());
+  auto nx = next_layout.positions(next);
+  auto nv = next_layout.velocities(next);
+  nx.col(0) = ship.p_W + eta * axis;
+  nv.col(0) = w;
+  nx.rightCols(L.joints) = x;
+  nv.rightCols(L.joints) = v;
+  next_layout.cableOut(next) = L.cableOut(y);
+  next_layout.payoutRate(next) = L.payoutRate(y);
+  geometry.segments += 1;
+  geometry.first_length = first - d;
+  y.swap(next);
+}
+
+// The first segment merged into the second: joint x_2 dropped. The new first segment runs straight from the
+// tow point to x_3; its length is the sum, so mass is kept; the projection then restores that length (a
+// shift of second order in the kink at x_2).
+void mergeFirstSegment(ChainGeometry& geometry, std::vector<double>& y)
+{
+  const StateLayout L{ geometry.jointCount() }, next_layout{ L.joints - 1 };
+  std::vector<double> next(next_layout.size());
+  next_layout.positions(next) = L.positions(y).rightCols(L.joints - 1);
+  next_layout.velocities(next) = L.velocities(y).rightCols(L.joints - 1);
+  next_layout.cableOut(next) = L.cableOut(y);
+  next_layout.payoutRate(next) = L.payoutRate(y);
+  geometry.segments -= 1;
+  geometry.first_length += geometry.nominal_length;
+  y.swap(next);
+}
+}  // namespace
+
+bool remeshFirstSegment(const WinchParams& winch, const ShipEndState& ship, ChainGeometry& geometry,
+                        std::vector<double>& y)
+{
+  // One pass in one direction: split while the first segment is above the band, or merge while it is
+  // below. The first segment's length is carried from split to split (not recomputed from the cable out,
+  // whose rounding could put it on both sides of the band at once), and a call never turns back.
+  // A relative margin of 1e-6 on both edges: with max >= min + 1 a split then lands strictly above the
+  // merge edge and a merge strictly below the split edge, whatever the rounding.
+  auto firstSectionSegments = [&] { return geometry.segments - geometry.aftSectionSegments(); };
+  const double d = geometry.nominal_length;
+  const double split_above = winch.segment_max_fraction * d * (1.0 + 1e-6);
+  const double merge_below = winch.segment_min_fraction * d * (1.0 - 1e-6);
+  const bool split = geometry.first_length > split_above;
+  const bool merge = !split && geometry.first_length < merge_below && firstSectionSegments() >= 2;
+  if (!split && !merge)
+    return false;
+  for (int pass = 0; pass < 100000; ++pass)
+  {
+    if (split && geometry.first_length > split_above)
+      splitFirstSegment(ship, geometry, y);
+    else if (merge && geometry.first_length < merge_below && firstSectionSegments() >= 2)
+      mergeFirstSegment(geometry, y);
+    else
+      break;
+  }
+  return true;
 }
 
 }  // namespace tow_sim

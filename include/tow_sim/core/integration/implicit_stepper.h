@@ -1,5 +1,5 @@
 // The linearly implicit step's stage solve (docs/solver.md §7). The Rosenbrock-W methods (ROS34PW2 by
-// default, ROS2; rosenbrock_tableau.h, whose stage loop is in simulator_implicit.cpp) solve each stage
+// default, ROS2; rosenbrock_tableau.h; the stage loop: stages()) solve each stage
 // with the same matrix W = I - gamma h J:
 //   W K_i = f(t + c_i h, y + h sum a_ij K_j) + sum c_ij K_j + gamma h K_t,i df/dt.            (S15)
 // J is an approximation of the right-hand side's Jacobian taken once per step (a W-method keeps its order
@@ -22,10 +22,13 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <vector>
 
 #include "tow_sim/core/chain/chain_jacobian.h"
 #include "tow_sim/core/chain/chain_solver.h"
+#include "tow_sim/core/chain/chain_state.h"
+#include "tow_sim/core/integration/rosenbrock_tableau.h"
 
 namespace tow_sim
 {
@@ -64,6 +67,14 @@ public:
   // the linearisation, the tow point's increments `tow` known (position, velocity: K_t (v, a)).
   void solve(const std::vector<double>& r, const TowPointRates& tow, std::vector<double>& K);
 
+  // One step of the method `rw` (S15) from (t, y), f0 = f(t, y), the stage matrix factored for h [s]:
+  // y_next and error (y_next less the embedded solution). The tow point's increments in stage i are
+  // K_t,i (v, a) of `ship` at t.
+  using Derivative = std::function<void(double t, const std::vector<double>& y, std::vector<double>& dydt)>;
+  void stages(const RosenbrockTableau& rw, double t, double h, const std::vector<double>& y,
+              const std::vector<double>& f0, const ShipEndState& ship, const Derivative& f, std::vector<double>& y_next,
+              std::vector<double>& error);
+
   double step() const { return h_; }  // [s] as factored
   int joints() const { return static_cast<int>(jacobians_.size()); }
 
@@ -76,6 +87,16 @@ private:
   double h_ = 0.0;
   double gamma_ = kGamma;
   double winch_d_length_ = 0.0, winch_d_rate_ = 0.0;
+  std::vector<std::vector<double>> stage_k_;  // the stages' workspace
+  std::vector<double> stage_y_, stage_f_;
 };
+
+// The weighted RMS of an implicit step's error, `error` of the step from y to y_next (accepted when <= 1):
+// each component against atol + rtol |value| (numerics' implicit_*_tol, the larger of the two ends), the
+// positions measured from the tow point (p0 at the start, p1 at the end) so that the norm does not depend
+// on where the world's origin is; the cable out and the payout rate too when `winch`.
+double implicitErrorNorm(const NumericsParams& num, const StateLayout& L, bool winch, const std::vector<double>& error,
+                         const std::vector<double>& y, const std::vector<double>& y_next, const Eigen::Vector3d& p0,
+                         const Eigen::Vector3d& p1);
 
 }  // namespace tow_sim

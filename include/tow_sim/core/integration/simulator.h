@@ -15,6 +15,7 @@
 #include "tow_sim/core/chain/chain_model.h"
 #include "tow_sim/core/chain/chain_solver.h"
 #include "tow_sim/core/chain/chain_state.h"
+#include "tow_sim/core/integration/explicit_stepper.h"
 #include "tow_sim/core/integration/implicit_stepper.h"
 #include "tow_sim/core/integration/rosenbrock_tableau.h"
 #include "tow_sim/core/integration/run_report.h"
@@ -160,30 +161,23 @@ private:
   ChainGeometry geometryOf(const StateVector& y) const;
   // validate(winch_, cable) of the first section, with the limits less the sections aft of it.
   void validateWinch() const;
-  bool remesh(double t);  // split or merge the first segment
-  // Segments of the first section now (the winch's: the sections aft of it keep theirs).
-  int firstSectionSegments() const { return data_.geometry.segments - data_.geometry.aftSectionSegments(); }
-  void splitFirstSegment(double t);
-  void mergeFirstSegment();
+  bool remesh(double t);  // split or merge the first segment (remeshFirstSegment, winch.h)
   void project(double t);
   void refreshOutputs();
   void stepOnce(double t_end, double winch_step, StepReport& report);  // one accepted or rejected step
   void acceptStep(StepReport& report);  // after an accepted step: re-mesh, project, outputs, snaps, parting
   // The implicit stepper's step: false when rejected (dt_ then holds the step to try next).
   bool stepImplicit(double t_end, double winch_step, StepReport& report);
-  void implicitStages(double h);  // y_next_ and error_ of the step h (factored)
-  bool implicit() const;          // numerics.stepper is implicit or implicit_fixed
-  double errorNorm(const StateVector& error, const StateVector& y_next, double t_next) const;  // weighted RMS
+  bool implicit() const;                        // numerics.stepper is implicit or implicit_fixed
   void linearise();                             // the implicit stepper's J at the current state (after refreshOutputs)
   double largestRelativeSpeed(double t) const;  // [m/s] fastest joint relative to the tow point
 
   static constexpr double kMinStep = 1e-10;  // [s] smallest adaptive step before the integration fails
 
-  struct Steppers;  // Boost.Odeint's, sized for the state (re-made when the winch re-meshes)
   std::shared_ptr<const ChainModel> model_;
   ShipMotion ship_;
-  std::unique_ptr<Steppers> steppers_;
-  mutable ChainSolver solver_;  // workspace only
+  std::unique_ptr<ExplicitStepper> explicit_;  // sized for the state (re-made when it changes size)
+  mutable ChainSolver solver_;                 // workspace only
   WinchParams winch_;
   ChainData data_;
   double t_ = 0.0;
@@ -210,8 +204,7 @@ private:
   void countSnaps(StepReport& report);
   ImplicitStepper implicit_;
   const RosenbrockTableau* tableau_ = nullptr;  // the implicit steppers' method
-  std::vector<StateVector> stage_k_;            // the implicit step's workspace
-  StateVector stage_y_, stage_f_, y_next_, error_;
+  StateVector y_next_, error_;                  // the implicit step's
 };
 
 }  // namespace tow_sim

@@ -1,6 +1,10 @@
-// The winch's rate law (physics.md's winch; docs/solver.md §1): how the payout rate follows the command.
+// The winch (docs/physics.md's winch; docs/solver.md §1): its rate law, how the payout rate follows the
+// command, and the re-meshing of the first segment, the one whose length the winch changes.
 #pragma once
 
+#include <vector>
+
+#include "tow_sim/core/chain/chain_model.h"
 #include "tow_sim/core/params.h"
 
 namespace tow_sim
@@ -10,5 +14,13 @@ namespace tow_sim
 // winch's response time, within max_rate and max_acceleration, slowing so as to stop at min_length and
 // max_length.
 double winchAcceleration(const WinchParams& winch, double command, double length, double rate);
+
+// Keeps the first segment's length within [segment_min_fraction, segment_max_fraction] x the nominal d:
+// above the band a new joint splits it d from its aft end, below it merges into the second segment (within
+// the first section only), repeated in one direction until it is inside. `y` is the whole chain's state
+// (StateLayout of `geometry`, the tow point `ship` now); both change with the layout. Returns true when
+// the layout changed.
+bool remeshFirstSegment(const WinchParams& winch, const ShipEndState& ship, ChainGeometry& geometry,
+                        std::vector<double>& y);
 
 }  // namespace tow_sim
