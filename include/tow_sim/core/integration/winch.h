@@ -1,4 +1,4 @@
-// The winch (docs/physics.md's winch; docs/solver.md §1): its rate law, how the payout rate follows the
+// The winch (docs/physics.md §9; docs/solver.md §1): its rate law, how the payout rate follows the
 // command, and the re-meshing of the first segment, the one whose length the winch changes.
 #pragma once
 
