@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "tow_sim/config/node_params.h"
 #include "tow_sim/config/param_yaml.h"
 #include "tow_sim/core/environment/seabed.h"
 #include "tow_sim/core/param_tables.h"
@@ -194,6 +195,22 @@ SimulationConfig loadConfig(const YAML::Node& root, const std::string& prefix, c
   }
 }
 
+std::vector<std::string> configurationFileKeys()
+{
+  std::vector<std::string> keys = { "cable", "vehicle", "environment", "numerics", "winch", "seabed", "sensor_frames" };
+  for (const ParamSpec<NodeParams>& p : nodeParams().specs())
+    keys.push_back(p.key);
+  return keys;
+}
+
+void requireKnownKeys(const YAML::Node& root, const std::string& prefix, const std::vector<std::string>& known)
+{
+  // "/tow_sim/" names its keys "/tow_sim.key" here (ros_conv::withSlashes makes them "/tow_sim/key").
+  Section top(root, prefix.empty() || prefix.back() != '/' ? prefix : prefix.substr(0, prefix.size() - 1));
+  top.allow(known);
+  top.finish();
+}
+
 SimulationConfig loadConfigFile(const std::string& path)
 {
   YAML::Node root;
@@ -205,7 +222,16 @@ SimulationConfig loadConfigFile(const std::string& path)
   {
     throw std::invalid_argument(path + ": cannot read the configuration: " + e.what());
   }
-  return loadConfig(root, "", directoryOf(path));
+  SimulationConfig config = loadConfig(root, "", directoryOf(path));
+  try
+  {
+    requireKnownKeys(root, "", configurationFileKeys());
+  }
+  catch (const std::invalid_argument& e)
+  {
+    throw std::invalid_argument(path + ": " + e.what());
+  }
+  return config;
 }
 
 YAML::Node toYaml(const SimulationConfig& c)

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "tow_sim/config/config.h"
 #include "tow_sim/ros/conversions.h"
@@ -16,11 +17,18 @@ namespace tow_sim
 {
 namespace
 {
+// Its own parameters and, as tow_sim.launch loads the towing configuration here too (for the waves), a
+// configuration file's keys: any other private parameter is a typo.
 ShipMotionParams readParams(const ros::NodeHandle& pnh)
 {
   try
   {
-    return readShipMotionParams(ros_conv::privateParameters(pnh), pnh.getNamespace());
+    const YAML::Node parameters = ros_conv::privateParameters(pnh);
+    std::vector<std::string> known = configurationFileKeys();
+    for (const auto& p : shipMotionParams().specs())
+      known.push_back(p.key);
+    requireKnownKeys(parameters, pnh.getNamespace() + "/", known);
+    return readShipMotionParams(parameters, pnh.getNamespace());
   }
   catch (const std::invalid_argument& e)
   {

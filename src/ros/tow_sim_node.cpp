@@ -43,7 +43,12 @@ SimulationConfig readConfig(const ros::NodeHandle& pnh, const NodeParams& params
 {
   try
   {
-    SimulationConfig config = loadConfig(ros_conv::privateParameters(pnh), pnh.getNamespace() + "/");
+    const YAML::Node parameters = ros_conv::privateParameters(pnh);
+    SimulationConfig config = loadConfig(parameters, pnh.getNamespace() + "/");
+    std::vector<std::string> known = configurationFileKeys();
+    for (const char* live : { "current_x", "current_y", "current_z", "safe_working_load", "breaking_load" })
+      known.push_back(live);  // dynamic_reconfigure's own (cfg/TowSim.cfg): its server writes them here
+    requireKnownKeys(parameters, pnh.getNamespace() + "/", known);
     if (isImplicit(config.numerics.stepper))
       config.numerics.max_step = std::min(config.numerics.max_step, params.max_command_lag);
     return config;

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <string>
 
+#include "core/temp_file.h"
 #include "tow_sim/config/config.h"
 
 namespace tow_sim
@@ -229,3 +230,36 @@ TEST(Config, ErrorsNameTheFullKeyPathTheValueAndTheRange)
 
 }  // namespace
 }  // namespace tow_sim
+
+// No silent typo (issue 28): a configuration file's top-level key outside the sections, tow_sim_node's own
+// parameters and tow_sim_urdf's sensor_frames is refused, naming it and the nearest known key; so is a
+// misspelt key inside a section. The keys a file legitimately holds pass.
+TEST(Config, AMisspeltTopLevelKeyIsRefusedWithTheNearestKnownOne)
+{
+  auto refusal = [](const std::string& name, const std::string& text)
+  {
+    try
+    {
+      tow_sim::loadConfigFile(test::writeTempFile(name, text));
+    }
+    catch (const std::invalid_argument& e)
+    {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  std::string e = refusal("typo_top.yaml", "cabel: {length: 500}\n");
+  EXPECT_NE(e.find("typo_top.yaml: cabel: unknown key; did you mean 'cable'?"), std::string::npos) << e;
+  e = refusal("typo_node.yaml", "vehicle_fram: fish\n");
+  EXPECT_NE(e.find("vehicle_fram: unknown key; did you mean 'vehicle_frame'?"), std::string::npos) << e;
+  e = refusal("typo_far.yaml", "zzzz: 1\n");
+  EXPECT_NE(e.find("zzzz: unknown key (known keys:"), std::string::npos) << e;  // nothing near: no guess
+  e = refusal("typo_inner.yaml", "winch: {max_rat: 1.0}\n");
+  EXPECT_NE(e.find("winch.max_rat: unknown key; did you mean 'max_rate'?"), std::string::npos) << e;
+  EXPECT_EQ(refusal("fine.yaml",
+                    "cable: {length: 500}\nvehicle_frame: fish\nworld_frame: map\n"
+                    "sensor_frames: []\ninitial_shape: line\n"),
+            "");
+  for (const char* file : { "/config/tow_sim.yaml", "/test/ros/urdf_config.yaml", "/test/ros/test_config.yaml" })
+    EXPECT_NO_THROW(tow_sim::loadConfigFile(std::string(TOW_SIM_SOURCE_DIR) + file)) << file;
+}

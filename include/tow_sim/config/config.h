@@ -5,18 +5,29 @@
 
 #include <yaml-cpp/yaml.h>
 #include <string>
+#include <vector>
 
 #include "tow_sim/core/run/simulation_config.h"
 
 namespace tow_sim
 {
 // Reads the sections `cable`, `vehicle`, `environment`, `numerics`, `winch` and `seabed` of `root`
-// (others are ignored; a relative seabed.grid_file is taken from `base_dir` when given;
-// every section and key is optional and defaults to the documented value). Throws
+// (other top-level keys are the caller's to check: requireKnownKeys; a relative seabed.grid_file is taken from
+// `base_dir` when given; every section and key is optional and defaults to the documented value). Throws
 // std::invalid_argument naming the full key path (prefixed by `prefix`, e.g. "/tow_sim/") for an
 // unknown key, a wrong type, or a value out of its range.
 SimulationConfig loadConfig(const YAML::Node& root, const std::string& prefix = "", const std::string& base_dir = "");
-SimulationConfig loadConfigFile(const std::string& path);  // grid files relative to the file's directory
+// A configuration file: loadConfig, grid files relative to the file's directory, and every top-level key one
+// of configurationFileKeys().
+SimulationConfig loadConfigFile(const std::string& path);
+
+// The top-level keys a configuration file may hold, so that a misspelt one is refused: the six sections,
+// tow_sim_node's own parameters (NodeParams: the file is loaded into its private namespace) and
+// tow_sim_urdf's sensor_frames. One file serves the node, the ship, the chart and the URDF.
+std::vector<std::string> configurationFileKeys();
+// Refuses a top-level key of `root` outside `known`, naming it under `prefix` ("" or "/node/") with the
+// nearest known key (std::invalid_argument).
+void requireKnownKeys(const YAML::Node& root, const std::string& prefix, const std::vector<std::string>& known);
 
 // The directory part of a path ("" for a bare file name), with a trailing slash.
 std::string directoryOf(const std::string& path);

@@ -3,6 +3,7 @@
 
 #include <yaml-cpp/yaml.h>
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <set>
@@ -20,6 +21,37 @@ namespace detail
   throw std::invalid_argument(path + ": " + what);
 }
 
+// The known key nearest to a misspelt one (edit distance, at most a third of its length and at least 2),
+// or "" when none is that near.
+inline std::string closestKey(const std::string& key, const std::set<std::string>& known)
+{
+  std::string best;
+  size_t best_distance = std::max<size_t>(2, key.size() / 3) + 1;
+  for (const std::string& candidate : known)
+  {
+    std::vector<size_t> row(candidate.size() + 1);
+    for (size_t j = 0; j <= candidate.size(); ++j)
+      row[j] = j;
+    for (size_t i = 1; i <= key.size(); ++i)
+    {
+      size_t diagonal = row[0];
+      row[0] = i;
+      for (size_t j = 1; j <= candidate.size(); ++j)
+      {
+        const size_t above = row[j];
+        row[j] = std::min({ row[j] + 1, row[j - 1] + 1, diagonal + (key[i - 1] == candidate[j - 1] ? 0 : 1) });
+        diagonal = above;
+      }
+    }
+    if (row.back() < best_distance)
+    {
+      best_distance = row.back();
+      best = candidate;
+    }
+  }
+  return best;
+}
+
 // One YAML mapping with its key path; remembers which keys were read so that unknown ones (typos)
 // are reported instead of silently ignored.
 class Section
@@ -32,7 +64,7 @@ public:
   }
 
   const std::string& name() const { return path_; }
-  std::string path(const std::string& key) const { return path_ + "." + key; }
+  std::string path(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
   bool has(const std::string& key)
   {
     known_.insert(key);
@@ -119,7 +151,10 @@ public:
     return Section(node_ && node_.IsMap() ? node_[key] : YAML::Node(), path(key));
   }
 
-  // Throws for any key that no read asked for.
+  // Marks keys as known that another reader takes (finish() leaves them alone).
+  void allow(const std::vector<std::string>& keys) { known_.insert(keys.begin(), keys.end()); }
+
+  // Throws for any key that no read asked for, naming the nearest known one.
   void finish() const
   {
     if (!node_ || !node_.IsMap())
@@ -132,7 +167,11 @@ public:
       if (known_.count(key))
         continue;
       std::ostringstream os;
-      os << "unknown key (known keys:";
+      os << "unknown key";
+      const std::string near = closestKey(key, known_);
+      if (!near.empty())
+        os << "; did you mean '" << near << "'?";
+      os << " (known keys:";
       for (const std::string& k : known_)
         os << " " << k;
       os << ")";
