@@ -23,7 +23,7 @@ double stampOf(const std_msgs::Header& header)
 DepthAutopilotNode::DepthAutopilotNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     : nh_(nh),
       pnh_(pnh),
-      node_params_(ros_conv::readPrivateParams<AutopilotNodeParams>(pnh, autopilotNodeParams(), validate)),
+      node_params_(ros_conv::readOwnPrivateParams<AutopilotNodeParams>(pnh, autopilotNodeParams(), validate)),
       autopilot_(node_params_.controller)
 {
   vehicle_sub_ = nh_.subscribe("vehicle/odom", 10, &DepthAutopilotNode::onVehicleOdometry, this);

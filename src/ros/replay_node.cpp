@@ -15,7 +15,7 @@ namespace tow_sim
 ReplayNode::ReplayNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     : nh_(nh),
       pnh_(pnh),
-      params_(ros_conv::readPrivateParams<ReplayParams>(pnh, replayParams(), validate)),
+      params_(ros_conv::readOwnPrivateParams<ReplayParams>(pnh, replayParams(), validate)),
       frames_(readShapes(params_.run + "/shapes.csv"))
 {
   clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);

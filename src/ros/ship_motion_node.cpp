@@ -25,8 +25,8 @@ ShipMotionParams readParams(const ros::NodeHandle& pnh)
   {
     const YAML::Node parameters = ros_conv::privateParameters(pnh);
     std::vector<std::string> known = configurationFileKeys();
-    for (const auto& p : shipMotionParams().specs())
-      known.push_back(p.key);
+    for (const std::string& key : topLevelKeys(shipMotionParams()))
+      known.push_back(key);
     requireKnownKeys(parameters, pnh.getNamespace() + "/", known);
     return readShipMotionParams(parameters, pnh.getNamespace());
   }

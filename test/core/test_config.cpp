@@ -2,12 +2,15 @@
 // reported with its full path.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <string>
 
 #include "core/temp_file.h"
 #include "tow_sim/config/config.h"
+#include "tow_sim/config/param_yaml.h"
+#include "tow_sim/core/param_tables.h"
 
 namespace tow_sim
 {
@@ -262,4 +265,14 @@ TEST(Config, AMisspeltTopLevelKeyIsRefusedWithTheNearestKnownOne)
             "");
   for (const char* file : { "/config/tow_sim.yaml", "/test/ros/urdf_config.yaml", "/test/ros/test_config.yaml" })
     EXPECT_NO_THROW(tow_sim::loadConfigFile(std::string(TOW_SIM_SOURCE_DIR) + file)) << file;
+}
+
+// The names a namespace may hold at its top level, from a table with nested keys (environment.waves.*).
+TEST(Config, TopLevelKeysOfATableNameEachNestedSectionOnce)
+{
+  const std::vector<std::string> keys = tow_sim::topLevelKeys(tow_sim::environmentParams());
+  EXPECT_EQ(std::count(keys.begin(), keys.end(), "waves"), 1) << "waves.* is one section";
+  EXPECT_EQ(std::count(keys.begin(), keys.end(), "current"), 1);
+  for (const std::string& key : keys)
+    EXPECT_EQ(key.find('.'), std::string::npos) << key;
 }

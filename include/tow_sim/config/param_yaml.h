@@ -5,6 +5,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <map>
 #include <string>
 #include <vector>
@@ -154,4 +155,19 @@ void writeParams(YAML::Node node, const ParamTable<S>& table, const S& in)
 }
 
 }  // namespace detail
+
+// The top-level names of a table's keys ("winch.max_rate" -> "winch"), each once, in the table's order.
+template <class S>
+std::vector<std::string> topLevelKeys(const ParamTable<S>& table)
+{
+  std::vector<std::string> keys;
+  for (const ParamSpec<S>& p : table.specs())
+  {
+    const std::string top = p.key.substr(0, p.key.find('.'));
+    if (std::find(keys.begin(), keys.end(), top) == keys.end())
+      keys.push_back(top);
+  }
+  return keys;
+}
+
 }  // namespace tow_sim

@@ -21,6 +21,7 @@
 
 #include "tow_sim/CableState.h"
 #include "tow_sim/FinLoads.h"
+#include "tow_sim/config/config.h"
 #include "tow_sim/config/param_yaml.h"
 #include "tow_sim/core/run/odometry_check.h"
 #include "tow_sim/core/run/tow_run.h"
@@ -59,6 +60,24 @@ S readPrivateParams(const ros::NodeHandle& pnh, const ParamTable<S>& table,
 // Ship odometry as the live run's input (its time, t, is the live run's to set from the stamp).
 OdometryInput toOdometryInput(const nav_msgs::Odometry& msg);
 Eigen::Vector3d toEigen(const geometry_msgs::Vector3& v);
+
+// As readPrivateParams, for a node whose private namespace holds only this table's keys: any other is a
+// typo, refused naming it and the nearest known key.
+template <class S>
+S readOwnPrivateParams(const ros::NodeHandle& pnh, const ParamTable<S>& table,
+                       void (*validate)(const S&, const std::string&))
+{
+  S params = readPrivateParams(pnh, table, validate);
+  try
+  {
+    requireKnownKeys(privateParameters(pnh), pnh.getNamespace() + "/", topLevelKeys(table));
+  }
+  catch (const std::invalid_argument& e)
+  {
+    throw withSlashes(e);
+  }
+  return params;
+}
 
 geometry_msgs::Point toPoint(const Eigen::Vector3d& v);
 geometry_msgs::Vector3 toVector3(const Eigen::Vector3d& v);
