@@ -327,7 +327,7 @@ double Simulator::largestRelativeSpeed(double t) const
 {
   const StateLayout L = layout();
   double speed = (L.velocities(y_).colwise() - towPoint(t, y_).v_W).colwise().norm().maxCoeff();
-  if (L.remnant > 0)  // the cable left on the ship, relative to the ship
+  if (L.ship_side > 0)  // the cable left on the ship, relative to the ship
     speed = std::max(speed, (L.shipSideVelocities(y_).colwise() - ship_(t).v_W).colwise().norm().maxCoeff());
   return speed;
 }

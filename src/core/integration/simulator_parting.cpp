@@ -130,7 +130,7 @@ void Simulator::clearShipSide()
 void Simulator::shipSideDerivative(double t, const StateVector& y, StateVector& dydt) const
 {
   const StateLayout L = layout();
-  if (L.remnant == 0)
+  if (L.ship_side == 0)
     return;
   L.shipSidePositions(dydt) = L.shipSideVelocities(y);
   ship_side_solver_.solve(*model_, ship_side_, data_, t, ship_(t), L.shipSidePositions(y), L.shipSideVelocities(y),
@@ -140,8 +140,8 @@ void Simulator::shipSideDerivative(double t, const StateVector& y, StateVector& 
 void Simulator::shipSideOutputs()
 {
   const StateLayout L = layout();
-  ship_side_tensions_.resize(3, L.remnant);
-  if (L.remnant == 0)
+  ship_side_tensions_.resize(3, L.ship_side);
+  if (L.ship_side == 0)
     return;
   L.shipSidePositions(dydt_) = L.shipSideVelocities(y_);
   ship_side_solver_.solve(*model_, ship_side_, data_, t_, ship_(t_), L.shipSidePositions(y_), L.shipSideVelocities(y_),
@@ -151,13 +151,13 @@ void Simulator::shipSideOutputs()
 void Simulator::projectShipSide(double t)
 {
   const StateLayout L = layout();
-  if (L.remnant == 0 || model_->elastic())  // an elastic cable's segments stretch: no length to keep
+  if (L.ship_side == 0 || model_->elastic())  // an elastic cable's segments stretch: no length to keep
     return;
   auto x = L.shipSidePositions(y_);
   auto v = L.shipSideVelocities(y_);
   const ShipEndState ship = ship_(t);
   Eigen::Vector3d x_f = ship.p_W, v_f = ship.v_W;
-  for (int e = 0; e < L.remnant; ++e)
+  for (int e = 0; e < L.ship_side; ++e)
   {
     const Eigen::Vector3d s = (x.col(e) - x_f).normalized();
     x.col(e) = x_f + ship_side_.elementLength(e) * s;
@@ -170,7 +170,7 @@ void Simulator::projectShipSide(double t)
 double Simulator::shipSideLengthError() const
 {
   const StateLayout L = layout();
-  if (L.remnant == 0 || model_->elastic())
+  if (L.ship_side == 0 || model_->elastic())
     return 0.0;
   return maxRelativeLengthError(ship_side_, ship_(t_).p_W, L.shipSidePositions(y_));
 }
@@ -178,11 +178,11 @@ double Simulator::shipSideLengthError() const
 Eigen::Matrix3Xd Simulator::shipSideJoints() const
 {
   const StateLayout L = layout();
-  if (L.remnant == 0)
+  if (L.ship_side == 0)
     return Eigen::Matrix3Xd(3, 0);
-  Eigen::Matrix3Xd p(3, L.remnant + 1);
+  Eigen::Matrix3Xd p(3, L.ship_side + 1);
   p.col(0) = ship_(t_).p_W;
-  p.rightCols(L.remnant) = L.shipSidePositions(y_);
+  p.rightCols(L.ship_side) = L.shipSidePositions(y_);
   return p;
 }
 

@@ -47,24 +47,24 @@ struct StateLayout
 {
   int joints = 0;     // nu + 1
   bool free = false;  // a parted cable: the free first joint's position and velocity follow (6 more)
-  int remnant = 0;    // and the joints of the cable left on the ship, x_2 .. x_j: positions, velocities
+  int ship_side = 0;  // and the joints of the cable left on the ship, x_2 .. x_j: positions, velocities
   std::size_t shipSideOffset() const { return 6 * static_cast<std::size_t>(joints) + 2 + (free ? 6 : 0); }
-  std::size_t size() const { return shipSideOffset() + 6 * static_cast<std::size_t>(remnant); }
+  std::size_t size() const { return shipSideOffset() + 6 * static_cast<std::size_t>(ship_side); }
   Eigen::Map<Eigen::Matrix3Xd> shipSidePositions(std::vector<double>& y) const
   {
-    return { y.data() + shipSideOffset(), 3, remnant };
+    return { y.data() + shipSideOffset(), 3, ship_side };
   }
   Eigen::Map<const Eigen::Matrix3Xd> shipSidePositions(const std::vector<double>& y) const
   {
-    return { y.data() + shipSideOffset(), 3, remnant };
+    return { y.data() + shipSideOffset(), 3, ship_side };
   }
   Eigen::Map<Eigen::Matrix3Xd> shipSideVelocities(std::vector<double>& y) const
   {
-    return { y.data() + shipSideOffset() + 3 * remnant, 3, remnant };
+    return { y.data() + shipSideOffset() + 3 * ship_side, 3, ship_side };
   }
   Eigen::Map<const Eigen::Matrix3Xd> shipSideVelocities(const std::vector<double>& y) const
   {
-    return { y.data() + shipSideOffset() + 3 * remnant, 3, remnant };
+    return { y.data() + shipSideOffset() + 3 * ship_side, 3, ship_side };
   }
   Eigen::Map<Eigen::Matrix3Xd> positions(std::vector<double>& y) const { return { y.data(), 3, joints }; }
   Eigen::Map<const Eigen::Matrix3Xd> positions(const std::vector<double>& y) const { return { y.data(), 3, joints }; }

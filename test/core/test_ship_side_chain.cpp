@@ -14,7 +14,7 @@ namespace tow_sim
 {
 namespace
 {
-struct Remnant
+struct ShipSide
 {
   std::shared_ptr<ChainModel> model;
   ChainGeometry geometry;
@@ -22,14 +22,14 @@ struct Remnant
   double segment_mass = 0.0;  // [kg]
 };
 
-Remnant remnant(int segments)
+ShipSide shipSide(int segments)
 {
   CableParams cable;
   cable.length = 100.0;
   cable.segments = 10;
   Environment vacuum;
   vacuum.water_density = 0.0;
-  Remnant r;
+  ShipSide r;
   r.model = test::makeModel(cable, EndElementParams(), vacuum);
   r.data = r.model->initialData();
   r.geometry = r.model->initialGeometry();
@@ -39,9 +39,9 @@ Remnant remnant(int segments)
   return r;
 }
 
-TEST(RemnantChain, HangingAtRestInVacuumEachJointCarriesTheWeightBelowIt)
+TEST(ShipSideChain, HangingAtRestInVacuumEachJointCarriesTheWeightBelowIt)
 {
-  const Remnant r = remnant(4);
+  const ShipSide r = shipSide(4);
   ASSERT_EQ(r.geometry.elementCount(), 4);
   ShipEndState ship;
   ship.p_W = Eigen::Vector3d(5.0, 1.0, 0.0);
@@ -57,9 +57,9 @@ TEST(RemnantChain, HangingAtRestInVacuumEachJointCarriesTheWeightBelowIt)
     EXPECT_LT((T.col(k) - Eigen::Vector3d(0.0, 0.0, (4 - k) * w)).norm(), 1e-9 * w) << "joint " << k + 1;
 }
 
-TEST(RemnantChain, OneSegmentReleasedLevelIsARodOnAPivot)
+TEST(ShipSideChain, OneSegmentReleasedLevelIsARodOnAPivot)
 {
-  const Remnant r = remnant(1);
+  const ShipSide r = shipSide(1);
   const double L = r.geometry.nominal_length, m = r.segment_mass, g = 9.81;
   ShipEndState ship;
   Eigen::Matrix3Xd x(3, 1), v = Eigen::Matrix3Xd::Zero(3, 1), a(3, 1), T;
@@ -70,9 +70,9 @@ TEST(RemnantChain, OneSegmentReleasedLevelIsARodOnAPivot)
   EXPECT_LT((T.col(0) - Eigen::Vector3d(0.0, 0.0, 0.25 * m * g)).norm(), 1e-9 * m * g);
 }
 
-TEST(RemnantChain, OneSegmentSwingingThroughTheBottomCarriesItsCentripetalLoad)
+TEST(ShipSideChain, OneSegmentSwingingThroughTheBottomCarriesItsCentripetalLoad)
 {
-  const Remnant r = remnant(1);
+  const ShipSide r = shipSide(1);
   const double L = r.geometry.nominal_length, m = r.segment_mass, g = 9.81, omega = 0.7;
   ShipEndState ship;
   Eigen::Matrix3Xd x(3, 1), v(3, 1), a(3, 1), T;
