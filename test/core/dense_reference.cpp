@@ -21,7 +21,7 @@ DenseSolution solveDense(const ChainModel& model, double t, const ShipEndState& 
                          const Eigen::Matrix3Xd& v)
 {
   const ChainData data = model.initialData(t);
-  return solveDense(model, data.geometry, data, t, ship, x, v);
+  return solveDense(model, model.initialGeometry(), data, t, ship, x, v);
 }
 
 namespace

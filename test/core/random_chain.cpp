@@ -74,6 +74,7 @@ RandomCase makeRandomCase(int segments, std::mt19937& rng, EndKind kind, bool wi
     c.ship.p_W.z() = -600.0;  // the whole chain under water
   c.ship.v_W = randomVector(rng, 3.0);
   c.ship.a_W = randomVector(rng, 0.5);
+  c.geometry = c.model->initialGeometry();
   c.data = c.model->initialData(0.0);
   if (kind != EndKind::kRigid)
     c.model->endBody().command(c.data.actuators, 0.0, 0.6 * (u(rng) - 0.5), 0.6 * (u(rng) - 0.5),
@@ -82,9 +83,9 @@ RandomCase makeRandomCase(int segments, std::mt19937& rng, EndKind kind, bool wi
   if (winch)
   {
     payout_rate = 4.0 * (u(rng) - 0.5);
-    c.data.geometry.first_length = (0.5 + u(rng)) * c.model->nominalSegmentLength();
-    c.data.geometry.first_rate = payout_rate;
-    c.data.geometry.first_acceleration = 2.0 * (u(rng) - 0.5);
+    c.geometry.first_length = (0.5 + u(rng)) * c.model->nominalSegmentLength();
+    c.geometry.first_rate = payout_rate;
+    c.geometry.first_acceleration = 2.0 * (u(rng) - 0.5);
   }
   const int n = c.model->jointCount();
   c.x.resize(3, n);
@@ -94,7 +95,7 @@ RandomCase makeRandomCase(int segments, std::mt19937& rng, EndKind kind, bool wi
   {
     const Eigen::Vector3d s = randomVector(rng, 1.0).normalized();
     const Eigen::Vector3d omega = randomVector(rng, 0.3);
-    const double d = c.data.geometry.elementLength(e);
+    const double d = c.geometry.elementLength(e);
     c.x.col(e) = x_f + d * s;
     c.v.col(e) = v_f + d * omega.cross(s);  // consistent with the length constraint
     if (e == 0)

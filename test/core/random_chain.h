@@ -17,7 +17,8 @@ namespace test
 struct RandomCase
 {
   std::shared_ptr<ChainModel> model;
-  ChainData data;  // the actuators commanded, the first segment paid out
+  ChainGeometry geometry;  // the first segment paid out
+  ChainData data;          // the actuators commanded
   ShipEndState ship;
   Eigen::Matrix3Xd x, v;
 };

@@ -134,9 +134,9 @@ TEST(ChainJacobian, DragDerivativeVanishesWithTheNormalFlow)
 Vector6d projectedLoads(const RandomCase& c, int e, double t, const ElementKinematics& k)
 {
   BodyDynamics body;
-  c.model->elementDynamics(e, t, k, c.data.geometry, c.data, body);
-  if (e == 0 && c.data.geometry.first_rate != 0.0)
-    body.wrench -= body.mass.rightCols<3>() * (-2.0 * c.data.geometry.first_rate / k.length * k.omega);
+  c.model->elementDynamics(e, t, k, c.geometry, c.data, body);
+  if (e == 0 && c.geometry.first_rate != 0.0)
+    body.wrench -= body.mass.rightCols<3>() * (-2.0 * c.geometry.first_rate / k.length * k.omega);
   return jointMap(k.s, k.length, body.cg_fraction).transpose() * body.wrench;
 }
 
@@ -180,7 +180,7 @@ TEST(ChainJacobian, CableSegmentVelocityBlockMatchesCentralDifferencesOfItsLoads
       if (c.model->seabed() && c.model->seabed()->altitude(k.x_a) < 0.0)
         ++on_bottom;
       ElementJacobian J;
-      elementJacobian(*c.model, e, 0.0, k, c.data.geometry, c.data, 0.0, J);
+      elementJacobian(*c.model, e, 0.0, k, c.geometry, c.data, 0.0, J);
       const Matrix6d D = velocityDifferences(c, e, 0.0, 1e-6);
       EXPECT_LT(relativeDifference(J.dh_dv, D), 1e-6) << "trial " << trial << ", element " << e;
     }
@@ -326,7 +326,9 @@ TEST(ChainJacobian, ElasticAxialForceDerivativesMatchCentralDifferences)
     addGeometricStiffness(k, -T, J);
     addAxialStiffness(cable, d0, k, J);
     if (!moving)  // with a stretch rate the damping's turning with s is left out of J
+    {
       EXPECT_LT(relativeDifference(J.dh_dx, fd_x), 1e-6) << "trial " << trial;
+    }
     EXPECT_LT(relativeDifference(J.dh_dv, fd_v), 1e-6) << "trial " << trial;
   }
   // Slack: no force, no derivative.
@@ -353,7 +355,7 @@ TEST(ChainJacobian, EndBodyForwardDifferencesMatchCentralDifferences)
       const ElementKinematics k = kinematicsOf(c, e);
       const double t = 0.4;
       ElementJacobian J;
-      elementJacobian(*c.model, e, t, k, c.data.geometry, c.data, 0.0, J);
+      elementJacobian(*c.model, e, t, k, c.geometry, c.data, 0.0, J);
       const Matrix6d D = velocityDifferences(c, e, t, 1e-5);
       EXPECT_LT(relativeDifference(J.dh_dv, D), 1e-5) << "kind " << static_cast<int>(kind) << ", trial " << trial;
       Matrix6d K;
@@ -387,11 +389,11 @@ TEST(ChainJacobian, EndBodyInertiaTurningWithItsAxisMatchesCentralDifferences)
       Vector6d a;
       a << test::randomVector(rng, 20.0), test::randomVector(rng, 20.0);
       ElementJacobian J;
-      elementJacobian(*c.model, e, t, k, c.data.geometry, c.data, 0.0, J, &a);
+      elementJacobian(*c.model, e, t, k, c.geometry, c.data, 0.0, J, &a);
       auto balance = [&](const ElementKinematics& kk) -> Vector6d
       {
         BodyDynamics body;
-        c.model->elementDynamics(e, t, kk, c.data.geometry, c.data, body);
+        c.model->elementDynamics(e, t, kk, c.geometry, c.data, body);
         const Matrix6d map = jointMap(kk.s, kk.length, body.cg_fraction);
         return map.transpose() * (body.wrench - body.mass * (map * a));
       };
@@ -409,7 +411,7 @@ TEST(ChainJacobian, EndBodyInertiaTurningWithItsAxisMatchesCentralDifferences)
       EXPECT_LT(relativeDifference(J.dh_dx, K), 1e-5) << "kind " << static_cast<int>(kind) << ", trial " << trial;
       // And the term is there: without the accelerations K differs.
       ElementJacobian without;
-      elementJacobian(*c.model, e, t, k, c.data.geometry, c.data, 0.0, without);
+      elementJacobian(*c.model, e, t, k, c.geometry, c.data, 0.0, without);
       EXPECT_GT(relativeDifference(without.dh_dx, K), 5e-5) << "kind " << static_cast<int>(kind);
     }
   }

@@ -285,8 +285,8 @@ TEST(ChainSections, RandomStatesMatchTheDenseReference)
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (int trial = 0; trial < 20; ++trial)
   {
-    ChainData data = model->initialData();
-    ChainGeometry& g = data.geometry;
+    const ChainData data = model->initialData();
+    ChainGeometry g = model->initialGeometry();
     g.segments += trial % 3;  // the winch has paid out 0, 1 or 2 more of the first section's segments
     g.first_length = g.nominal_length * (0.6 + 0.3 * (u(rng) + 1.0));
     g.first_rate = 0.8 * u(rng);

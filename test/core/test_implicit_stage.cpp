@@ -47,7 +47,7 @@ MatrixXld denseJacobian(const RandomCase& c, double t, const Linearisation& lin,
                         const Eigen::Matrix3Xd& accelerations)
 {
   const ChainModel& model = *c.model;
-  const int n = c.data.geometry.elementCount();  // = joints
+  const int n = c.geometry.elementCount();  // = joints
   const int dof = 3 * n;
   Eigen::MatrixXd M = Eigen::MatrixXd::Zero(dof, dof), D = M, K = M;
   Eigen::MatrixXd G = Eigen::MatrixXd::Zero(n, dof);
@@ -59,7 +59,7 @@ MatrixXld denseJacobian(const RandomCase& c, double t, const Linearisation& lin,
     const Eigen::Vector3d v_f = e == 0 ? c.ship.v_W : Eigen::Vector3d(c.v.col(e - 1));
     const ElementKinematics k = ElementKinematics::fromJoints(x_f, c.x.col(e), v_f, c.v.col(e));
     BodyDynamics body;
-    model.elementDynamics(e, t, k, c.data.geometry, c.data, body);
+    model.elementDynamics(e, t, k, c.geometry, c.data, body);
     // (a_G, dw/dt) = P (a_f, a_a): a_G = (1-g) a_f + g a_a, dw/dt = s x (a_a - a_f) / l.
     const double g = body.cg_fraction;
     Matrix6d P;
@@ -68,7 +68,7 @@ MatrixXld denseJacobian(const RandomCase& c, double t, const Linearisation& lin,
     ElementJacobian jac;
     Vector6d a_joints;
     a_joints << (e == 0 ? c.ship.a_W : Eigen::Vector3d(accelerations.col(e - 1))), accelerations.col(e);
-    elementJacobian(model, e, t, k, c.data.geometry, c.data, multipliers[e], jac, &a_joints);
+    elementJacobian(model, e, t, k, c.geometry, c.data, multipliers[e], jac, &a_joints);
     // Columns/rows of the element's two joints; the forward one of element 0 is the tow point (no unknown).
     const int cols[2] = { e == 0 ? -1 : 3 * (e - 1), 3 * e };
     for (int a = 0; a < 2; ++a)
@@ -114,16 +114,16 @@ MatrixXld denseJacobian(const RandomCase& c, double t, const Linearisation& lin,
 // One random case: the O(nu) stage solve against the dense one for several step sizes and right-hand sides.
 void expectStageMatchesDense(const RandomCase& c, double t, std::mt19937& rng, const std::string& what)
 {
-  const int n = c.data.geometry.elementCount();
+  const int n = c.geometry.elementCount();
   ChainSolver solver;
   Eigen::Matrix3Xd a(3, n);
   std::vector<double> multipliers;
-  solver.solve(*c.model, c.data.geometry, c.data, t, c.ship, c.x, c.v, a, nullptr, &multipliers);
+  solver.solve(*c.model, c.geometry, c.data, t, c.ship, c.x, c.v, a, nullptr, &multipliers);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   const Linearisation lin{ -0.5 + u(rng), -2.0 + u(rng) };
   ImplicitStepper stepper;
-  stepper.linearise(*c.model, c.data.geometry, c.data, t, c.ship, c.x, c.v, a, solver.terms(), multipliers,
-                    lin.d_length, lin.d_rate);
+  stepper.linearise(*c.model, c.geometry, c.data, t, c.ship, c.x, c.v, a, solver.terms(), multipliers, lin.d_length,
+                    lin.d_rate);
   const MatrixXld J = denseJacobian(c, t, lin, multipliers, a);
   const StateLayout layout{ n };
   for (double h : { 1e-3, 0.05, 0.5, 2.0 })

@@ -33,8 +33,8 @@ TEST(SolverVsDense, RandomStatesMatchToOnePartInABillion)
       const RandomCase c = makeRandomCase(segments, rng);
       ChainSolver solver;
       Eigen::Matrix3Xd a(3, c.model->jointCount()), tensions(3, c.model->jointCount());
-      solver.solve(*c.model, c.data.geometry, c.data, 0.0, c.ship, c.x, c.v, a, &tensions);
-      const test::DenseSolution ref = test::solveDense(*c.model, c.data.geometry, c.data, 0.0, c.ship, c.x, c.v);
+      solver.solve(*c.model, c.geometry, c.data, 0.0, c.ship, c.x, c.v, a, &tensions);
+      const test::DenseSolution ref = test::solveDense(*c.model, c.geometry, c.data, 0.0, c.ship, c.x, c.v);
       EXPECT_LT(relativeError(a, ref.accelerations), 1e-9) << "nu = " << segments << ", trial " << trial;
       EXPECT_LT(relativeError(tensions, ref.tensions), 1e-9) << "nu = " << segments << ", trial " << trial;
     }
@@ -51,8 +51,8 @@ TEST(SolverVsDense, WithTheWinchPayingOutTheFirstSegment)
       const RandomCase c = makeRandomCase(segments, rng, kind, true);
       ChainSolver solver;
       Eigen::Matrix3Xd a(3, c.model->jointCount()), tensions(3, c.model->jointCount());
-      solver.solve(*c.model, c.data.geometry, c.data, 0.2, c.ship, c.x, c.v, a, &tensions);
-      const test::DenseSolution ref = test::solveDense(*c.model, c.data.geometry, c.data, 0.2, c.ship, c.x, c.v);
+      solver.solve(*c.model, c.geometry, c.data, 0.2, c.ship, c.x, c.v, a, &tensions);
+      const test::DenseSolution ref = test::solveDense(*c.model, c.geometry, c.data, 0.2, c.ship, c.x, c.v);
       EXPECT_LT(relativeError(a, ref.accelerations), 1e-9) << "nu = " << segments;
       EXPECT_LT(relativeError(tensions, ref.tensions), 1e-9) << "nu = " << segments;
     }
@@ -72,8 +72,8 @@ TEST(SolverVsDense, WithTheFullVehicleInBothApproaches)
         ChainSolver solver;
         Eigen::Matrix3Xd a(3, c.model->jointCount()), tensions(3, c.model->jointCount());
         const double t = 0.4;  // fins part-way through their travel
-        solver.solve(*c.model, c.data.geometry, c.data, t, c.ship, c.x, c.v, a, &tensions);
-        const test::DenseSolution ref = test::solveDense(*c.model, c.data.geometry, c.data, t, c.ship, c.x, c.v);
+        solver.solve(*c.model, c.geometry, c.data, t, c.ship, c.x, c.v, a, &tensions);
+        const test::DenseSolution ref = test::solveDense(*c.model, c.geometry, c.data, t, c.ship, c.x, c.v);
         const int k = static_cast<int>(kind);
         EXPECT_LT(relativeError(a, ref.accelerations), 1e-9) << "kind " << k << ", nu = " << segments;
         EXPECT_LT(relativeError(tensions, ref.tensions), 1e-9) << "kind " << k << ", nu = " << segments;

@@ -20,6 +20,7 @@ constexpr int kMaxPasses = 100;  // shooting passes in a current profile
 struct Balance
 {
   const ChainModel& model;
+  const ChainGeometry& geometry;
   const ChainData& data;
   int element;
   double t;
@@ -35,7 +36,7 @@ struct Balance
     const double l = length;
     const ElementKinematics k = ElementKinematics::fromJoints(x_aft - l * s, x_aft, u, u);
     BodyDynamics body;
-    model.elementDynamics(element, t, k, data.geometry, data, body, false);  // the steady tow clear of the seabed
+    model.elementDynamics(element, t, k, geometry, data, body, false);  // the steady tow clear of the seabed
     const Eigen::Vector3d F = body.wrench.head<3>(), M = body.wrench.tail<3>();
     if (T_fwd)
       *T_fwd = T_aft - F;
@@ -115,25 +116,26 @@ bool isStable(const Balance& b, const Eigen::Vector3d& s)
   return Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(S).eigenvalues().maxCoeff() <= 1e-9 * (1.0 + S.norm());
 }
 
-EquilibriumResult shoot(const ChainModel& model, const ChainData& data, double t, const Eigen::Vector3d& tow_point_W,
-                        const Eigen::Vector3d& ship_velocity_W, const Eigen::Matrix3Xd& joints, int iterations,
-                        const std::vector<double>& lengths);
-std::vector<double> elementLengths(const ChainModel& model, const ChainData& data, const Eigen::Vector3d& tow_point_W,
-                                   const EquilibriumResult* stretched);
+EquilibriumResult shoot(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data, double t,
+                        const Eigen::Vector3d& tow_point_W, const Eigen::Vector3d& ship_velocity_W,
+                        const Eigen::Matrix3Xd& joints, int iterations, const std::vector<double>& lengths);
+std::vector<double> elementLengths(const ChainModel& model, const ChainGeometry& geometry,
+                                   const Eigen::Vector3d& tow_point_W, const EquilibriumResult* stretched);
 }  // namespace
 
 EquilibriumResult steadyTowEquilibrium(const ChainModel& model, double t, const Eigen::Vector3d& tow_point_W,
                                        const Eigen::Vector3d& ship_velocity_W)
 {
-  return steadyTowEquilibrium(model, model.initialData(t), t, tow_point_W, ship_velocity_W);
+  return steadyTowEquilibrium(model, model.initialGeometry(), model.initialData(t), t, tow_point_W, ship_velocity_W);
 }
 
-EquilibriumResult steadyTowEquilibrium(const ChainModel& model, const ChainData& data, double t,
-                                       const Eigen::Vector3d& tow_point_W, const Eigen::Vector3d& ship_velocity_W)
+EquilibriumResult steadyTowEquilibrium(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data,
+                                       double t, const Eigen::Vector3d& tow_point_W,
+                                       const Eigen::Vector3d& ship_velocity_W)
 {
   if (!tow_point_W.allFinite() || !ship_velocity_W.allFinite())
     throw std::runtime_error("equilibrium: tow point and ship velocity must be finite");
-  const int n = data.geometry.elementCount();
+  const int n = geometry.elementCount();
   // With a current profile each element's balance depends on its depth, which is known only once the
   // shape hangs from the tow point, and an elastic segment's on its stretch, known once its tension is:
   // repeat the shooting with the depths and stretches of the previous pass until they settle. A rigid
@@ -144,11 +146,11 @@ EquilibriumResult steadyTowEquilibrium(const ChainModel& model, const ChainData&
   EquilibriumResult result;
   for (int pass = 0; pass < (repeat ? kMaxPasses : 1); ++pass)
   {
-    const std::vector<double> lengths = elementLengths(model, data, tow_point_W, pass > 0 ? &result : nullptr);
-    result = shoot(model, data, t, tow_point_W, ship_velocity_W, joints, result.iterations, lengths);
+    const std::vector<double> lengths = elementLengths(model, geometry, tow_point_W, pass > 0 ? &result : nullptr);
+    result = shoot(model, geometry, data, t, tow_point_W, ship_velocity_W, joints, result.iterations, lengths);
     const double moved = (result.state.x - joints).cwiseAbs().maxCoeff();
     joints = result.state.x;
-    if (moved < 1e-7 * (1.0 + data.geometry.totalLength()))
+    if (moved < 1e-7 * (1.0 + geometry.totalLength()))
       return result;
   }
   if (repeat)
@@ -175,30 +177,30 @@ bool firstStable(const Balance& b, const Eigen::Vector3d (&candidates)[N], doubl
 
 // The element lengths: the geometry's; for an elastic cable with a solution `stretched` at hand, each
 // segment stretched by its tension there, N = -s.(T_fwd + T_aft)/2 (its static balance, docs/solver.md §8).
-std::vector<double> elementLengths(const ChainModel& model, const ChainData& data, const Eigen::Vector3d& tow_point_W,
-                                   const EquilibriumResult* stretched)
+std::vector<double> elementLengths(const ChainModel& model, const ChainGeometry& geometry,
+                                   const Eigen::Vector3d& tow_point_W, const EquilibriumResult* stretched)
 {
-  const int n = data.geometry.elementCount();
+  const int n = geometry.elementCount();
   std::vector<double> lengths(static_cast<size_t>(n));
   for (int e = 0; e < n; ++e)
   {
-    double& length = lengths[static_cast<size_t>(e)] = data.geometry.elementLength(e);
-    if (!stretched || !model.elastic() || e >= data.geometry.segments)
+    double& length = lengths[static_cast<size_t>(e)] = geometry.elementLength(e);
+    if (!stretched || !model.elastic() || e >= geometry.segments)
       continue;
     const Eigen::Matrix3Xd& x = stretched->state.x;
     const Eigen::Vector3d s = (x.col(e) - (e == 0 ? tow_point_W : Eigen::Vector3d(x.col(e - 1)))).normalized();
     const Eigen::Vector3d aft = stretched->tensions.col(e + 1);
     length *= 1.0 + std::max(-0.5 * s.dot(stretched->tensions.col(e) + aft), 0.0) /
-                        *model.segmentCable(e, data.geometry).axial_stiffness;
+                        *model.segmentCable(e, geometry).axial_stiffness;
   }
   return lengths;
 }
 
-EquilibriumResult shoot(const ChainModel& model, const ChainData& data, double t, const Eigen::Vector3d& tow_point_W,
-                        const Eigen::Vector3d& ship_velocity_W, const Eigen::Matrix3Xd& joints, int iterations,
-                        const std::vector<double>& lengths)
+EquilibriumResult shoot(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data, double t,
+                        const Eigen::Vector3d& tow_point_W, const Eigen::Vector3d& ship_velocity_W,
+                        const Eigen::Matrix3Xd& joints, int iterations, const std::vector<double>& lengths)
 {
-  const int n = data.geometry.elementCount();
+  const int n = geometry.elementCount();
   EquilibriumResult result;
   result.iterations = iterations;
   result.tensions.resize(3, n);
@@ -211,10 +213,12 @@ EquilibriumResult shoot(const ChainModel& model, const ChainData& data, double t
   Eigen::Vector3d T_aft = Eigen::Vector3d::Zero();
   for (int e = n - 1; e >= 0; --e)
   {
-    const Balance b{ model, data, e, t, ship_velocity_W, T_aft, joints.col(e), lengths[static_cast<size_t>(e)] };
+    const Balance b{
+      model, geometry, data, e, t, ship_velocity_W, T_aft, joints.col(e), lengths[static_cast<size_t>(e)]
+    };
     Eigen::Vector3d F_guess;
     b.residual(guess, &F_guess);
-    const double scale = 1.0 + data.geometry.elementLength(e) * (T_aft.norm() + F_guess.norm());
+    const double scale = 1.0 + geometry.elementLength(e) * (T_aft.norm() + F_guess.norm());
     // Candidates: the guess, the guess tipped, and the reversed guess; the first stable balance wins.
     const Eigen::Vector3d candidates[] = { guess, (guess - 0.5 * Eigen::Vector3d::UnitZ()).normalized(),
                                            (Eigen::AngleAxisd(0.3, guess.unitOrthogonal()) * guess).normalized(),

@@ -100,7 +100,6 @@ ChainGeometry ChainModel::initialGeometry() const
 ChainData ChainModel::initialData(double t) const
 {
   ChainData data;
-  data.geometry = initialGeometry();
   data.environment = env_;
   data.actuators = end_body_->restingActuators(t);
   return data;

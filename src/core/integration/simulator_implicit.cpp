@@ -23,7 +23,7 @@ StepperType Simulator::stepper() const
   // A parted cable's free end is not in the implicit stepper's linearisation (it takes the tow point's
   // motion as given): dopri5 from then on.
   const StepperType configured = model_->numerics().stepper;
-  return free_ && isImplicit(configured) ? StepperType::kDopri5 : configured;
+  return parted() && isImplicit(configured) ? StepperType::kDopri5 : configured;
 }
 
 bool Simulator::implicit() const
@@ -33,24 +33,11 @@ bool Simulator::implicit() const
 
 void Simulator::linearise()
 {
-  // The winch's rate law in the cable out and the rate, by central differences (it has corners: a
-  // W-method needs no more).
-  double d_length = 0.0, d_rate = 0.0;
-  if (winch_.enabled)
-  {
-    const StateLayout L = layout();
-    const double length = L.cableOut(y_), rate = L.payoutRate(y_);
-    const double dl = 1e-6 * std::max(1.0, length), dr = 1e-6;
-    d_length = (winchAcceleration(winch_, data_.winch_command, length + dl, rate) -
-                winchAcceleration(winch_, data_.winch_command, length - dl, rate)) /
-               (2.0 * dl);
-    d_rate = (winchAcceleration(winch_, data_.winch_command, length, rate + dr) -
-              winchAcceleration(winch_, data_.winch_command, length, rate - dr)) /
-             (2.0 * dr);
-  }
-  const StateLayout L = layout();
-  implicit_.linearise(*model_, data_.geometry, data_, t_, ship_(t_), L.positions(y_), L.velocities(y_), accelerations_,
-                      solver_.terms(), multipliers_, d_length, d_rate);
+  const StateLayout& L = layout();
+  const Eigen::Vector2d winch =
+      winchAccelerationDerivatives(winch_, data_.winch_command, L.cableOut(y_), L.payoutRate(y_));
+  implicit_.linearise(*model_, geometry(), data_, t_, ship_(t_), L.positions(y_), L.velocities(y_), accelerations(),
+                      vehicleSide().terms(), axialMultipliers(), winch.x(), winch.y());
 }
 
 bool Simulator::stepImplicit(double t_end, double winch_step, StepReport& report)

@@ -1,4 +1,5 @@
-// The Simulator's saved state: taken and given back whole, so that a restored run steps on bit-identically.
+// The Simulator's layout and restart, and its saved state: taken and given back whole, so that a restored run
+// steps on bit-identically.
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -22,28 +23,28 @@ void requireFinite(const std::string& field, const FinServo::State& servo)
   requireFinite(field + ".angle0", servo.angle0);
   requireFinite(field + ".target", servo.target);
 }
-}  // namespace
 
-SimulatorState Simulator::saveState() const
+// `geometry` with nu = segments and cable_out [m] out (Simulator::restoreLayout, whose errors it throws).
+ChainGeometry laidOut(const ChainModel& model, const WinchParams& winch, ChainGeometry geometry, int segments,
+                      double cable_out)
 {
-  if (free_)
-    throw std::logic_error("saved state: a parted cable's state cannot be saved (not supported yet)");
-  SimulatorState s;
-  s.t = t_;
-  s.dt = dt_;
-  s.segments = data_.geometry.segments;
-  s.y = y_;
-  s.rudder = data_.actuators.rudder.state();
-  s.elevator = data_.actuators.elevator.state();
-  s.thrust = data_.actuators.thrust;
-  s.winch_command = data_.winch_command;
-  s.slack = slack_;
-  return s;
+  geometry.segments = segments;
+  const double first = cable_out - geometry.lengthAftOfFirst();
+  const bool fixed_length_differs =
+      !winch.enabled && std::abs(cable_out - model.cableLength()) > 1e-9 * model.cableLength();
+  if (segments <= geometry.aftSectionSegments() || segments > 100000 || !std::isfinite(cable_out) || !(first > 0.0) ||
+      (winch.enabled && (cable_out < winch.min_length || cable_out > winch.max_length)) ||
+      (!winch.enabled && (segments != model.segments() || fixed_length_differs)))
+    throw std::invalid_argument("restoreLayout: " + std::to_string(segments) + " segments and " +
+                                std::to_string(cable_out) + " m of cable out are not a layout of this cable");
+  geometry.first_length = winch.enabled ? first : geometry.nominal_length;
+  return geometry;
 }
 
-void Simulator::restoreState(const SimulatorState& s)
+// Everything in a saved state that can be checked without the simulator's cable (std::invalid_argument
+// naming the field).
+void validateSavedState(const SimulatorState& s, bool winch_enabled)
 {
-  // Everything is checked before anything changes (restoreLayout checks first, too).
   requireFinite("t", s.t);
   if (!(s.dt > 0.0) || !std::isfinite(s.dt))
     throw std::invalid_argument("saved state: dt must be a finite step > 0 s, got " + std::to_string(s.dt));
@@ -59,22 +60,87 @@ void Simulator::restoreState(const SimulatorState& s)
   requireFinite("elevator", s.elevator);
   requireFinite("thrust", s.thrust);
   requireFinite("winch_command", s.winch_command);
-  if (!winch_.enabled && (s.winch_command != 0.0 || L.payoutRate(s.y) != 0.0))
+  if (!winch_enabled && (s.winch_command != 0.0 || L.payoutRate(s.y) != 0.0))
     throw std::invalid_argument(
         "saved state: the winch runs (a payout command or rate) but this run has no winch "
         "(winch.enabled)");
   if (!s.slack.empty() && s.slack.size() != static_cast<std::size_t>(s.segments))
     throw std::invalid_argument("saved state: slack has " + std::to_string(s.slack.size()) + " flags for " +
                                 std::to_string(s.segments) + " segments");
-  const bool was_parted = free_;
-  free_ = false;  // a saved state is of a whole cable
+}
+}  // namespace
+
+void Simulator::restoreLayout(int segments, double cable_out)
+{
+  if (parted())
+    throw std::logic_error("restoreLayout: the cable has parted: rejoin() it first");
+  vehicleSide().setGeometry(laidOut(*model_, winch_, geometry(), segments, cable_out));
+  y_.assign(layout().size(), 0.0);
+  layout().cableOut(y_) = cable_out;
+}
+
+void Simulator::reset(double t, const ChainState& state)
+{
+  if (parted())
+    throw std::logic_error("reset: the cable has parted: rejoin() it first");
+  const StateLayout L = layout();
+  if (state.x.cols() != L.joints || state.v.cols() != L.joints)
+  {
+    std::ostringstream os;
+    os << "initial state: expected " << L.joints << " joints (segments + 1), got " << state.x.cols()
+       << " positions and " << state.v.cols() << " velocities";
+    throw std::invalid_argument(os.str());
+  }
+  if (!std::isfinite(t) || !state.x.allFinite() || !state.v.allFinite())
+    throw std::invalid_argument("initial state: time, positions and velocities must be finite");
+  t_ = t;
+  y_.resize(L.size());
+  dydt_.resize(L.size());
+  // The winch restarts from rest with its command cleared; the cable out and the layout are kept.
+  L.payoutRate(y_) = 0.0;
+  data_.winch_command = 0.0;
+  L.positions(y_) = state.x;
+  L.velocities(y_) = state.v;
+  project(t_);
+  refreshOutputs();
+  dt_ = std::min(model_->numerics().max_step, 0.01);
+  slack_.clear();
+  StepReport ignored;
+  countSnaps(ignored);  // the taut segments of the restart
+}
+
+SimulatorState Simulator::saveState() const
+{
+  if (parted())
+    throw std::logic_error("saved state: a parted cable's state cannot be saved (not supported yet)");
+  SimulatorState s;
+  s.t = t_;
+  s.dt = dt_;
+  s.segments = geometry().segments;
+  s.y = y_;
+  s.rudder = data_.actuators.rudder.state();
+  s.elevator = data_.actuators.elevator.state();
+  s.thrust = data_.actuators.thrust;
+  s.winch_command = data_.winch_command;
+  s.slack = slack_;
+  return s;
+}
+
+void Simulator::restoreState(const SimulatorState& s)
+{
+  // Everything is checked before anything changes (restoreLayout checks first, too); a saved state is of
+  // the whole cable.
+  validateSavedState(s, winch_.enabled);
+  const std::vector<Chain> before = chains_;
+  chains_.assign(1, Chain(model_->initialGeometry(), StateLayout{}));
+  const StateLayout L{ s.segments + 1 };
   try
   {
     restoreLayout(s.segments, L.cableOut(s.y));
   }
   catch (const std::invalid_argument&)
   {
-    free_ = was_parted;
+    chains_ = before;
     std::ostringstream os;
     os << "saved state: " << s.segments << " segments and " << L.cableOut(s.y)
        << " m of cable out do not fit this cable (cable.segments " << model_->segments() << ", cable.length "
@@ -82,7 +148,6 @@ void Simulator::restoreState(const SimulatorState& s)
     throw std::invalid_argument(os.str());
   }
   parting_event_.reset();
-  clearShipSide();
   t_ = s.t;
   dt_ = s.dt;
   y_ = s.y;

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "tow_sim/core/chain/chain_state.h"
 
@@ -23,6 +25,62 @@ double winchAcceleration(const WinchParams& winch, double command, double length
   target = std::min({ target, std::sqrt(a * to_max), k * to_max });
   target = std::max({ target, -std::sqrt(a * to_min), -k * to_min });
   return std::clamp((target - rate) / tau, -a, a);
+}
+
+Eigen::Vector2d winchAccelerationDerivatives(const WinchParams& winch, double command, double length, double rate)
+{
+  if (!winch.enabled)
+    return Eigen::Vector2d::Zero();
+  const double dl = 1e-6 * std::max(1.0, length), dr = 1e-6;
+  return {
+    (winchAcceleration(winch, command, length + dl, rate) - winchAcceleration(winch, command, length - dl, rate)) /
+        (2.0 * dl),
+    (winchAcceleration(winch, command, length, rate + dr) - winchAcceleration(winch, command, length, rate - dr)) /
+        (2.0 * dr)
+  };
+}
+
+ChainGeometry paidOut(const WinchParams& winch, double command, ChainGeometry geometry, double length, double rate)
+{
+  geometry.first_length = std::max(length - geometry.lengthAftOfFirst(), 1e-9);
+  geometry.first_rate = rate;
+  geometry.first_acceleration = winchAcceleration(winch, command, length, rate);
+  return geometry;
+}
+
+void stopAtLimits(const WinchParams& winch, double& length, double& rate)
+{
+  if (length >= winch.max_length)
+    rate = std::min(rate, 0.0);
+  if (length <= winch.min_length)
+    rate = std::max(rate, 0.0);
+  length = std::clamp(length, winch.min_length, winch.max_length);
+  rate = std::clamp(rate, -winch.max_rate, winch.max_rate);
+}
+
+void validate(const WinchParams& winch, const ChainModel& model)
+{
+  if (model.sectionCount() == 1)
+  {
+    validate(winch, model.cable());
+    return;
+  }
+  double aft = 0.0;
+  for (int i = 1; i < model.sectionCount(); ++i)
+    aft += model.section(i).cable.length;
+  WinchParams first = winch;
+  first.min_length -= aft;
+  first.max_length -= aft;
+  try
+  {
+    validate(first, model.cable());
+  }
+  catch (const std::invalid_argument& e)
+  {
+    throw std::invalid_argument(
+        std::string(e.what()) + " (with cable sections: the winch's min_length and max_length less the " +
+        std::to_string(aft) + " m of the sections aft of the first, which the winch never moves)");
+  }
 }
 
 namespace

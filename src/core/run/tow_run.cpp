@@ -111,7 +111,9 @@ ChainState TowRun::initialState(double t, std::string* warning) const
         // waves does not tow upward or downward on average, and the sea is no steady load.
         ChainData calm = sim_.data();
         calm.environment.wave_field.reset();
-        state = steadyTowEquilibrium(*model_, calm, t, tow.p_W, Eigen::Vector3d(tow.v_W.x(), tow.v_W.y(), 0.0)).state;
+        state =
+            steadyTowEquilibrium(*model_, geometry, calm, t, tow.p_W, Eigen::Vector3d(tow.v_W.x(), tow.v_W.y(), 0.0))
+                .state;
         break;
       }
       catch (const std::runtime_error& e)

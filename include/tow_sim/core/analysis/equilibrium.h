@@ -22,10 +22,11 @@ struct EquilibriumResult
 };
 
 // Throws std::runtime_error naming the element when no direction balances it (or the speed or current
-// is not finite). The chain's geometry, currents and actuators are `data`'s (the model's initial data in
-// the first form); t is the time at which the fin angles are taken.
-EquilibriumResult steadyTowEquilibrium(const ChainModel& model, const ChainData& data, double t,
-                                       const Eigen::Vector3d& tow_point_W, const Eigen::Vector3d& ship_velocity_W);
+// is not finite). The element lengths are `geometry`'s, the currents and actuators `data`'s (the model's
+// initial geometry and data in the second form); t is the time at which the fin angles are taken.
+EquilibriumResult steadyTowEquilibrium(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data,
+                                       double t, const Eigen::Vector3d& tow_point_W,
+                                       const Eigen::Vector3d& ship_velocity_W);
 EquilibriumResult steadyTowEquilibrium(const ChainModel& model, double t, const Eigen::Vector3d& tow_point_W,
                                        const Eigen::Vector3d& ship_velocity_W);
 

@@ -1,8 +1,8 @@
 // The model of the towed chain (pinocchio's Model): a list of elements, nu cable segments in one or more
 // cable sections (each of its own segment length, weight, drag, added mass and stiffness) with point bodies
 // at joints, followed by the end body (docs/solver.md §11); the environment as configured and the seabed. Constant
-// after construction: everything that changes while running (the layout the winch re-meshes, the currents, the
-// actuators) is ChainData, and the loads are evaluated for a given ChainGeometry and ChainData.
+// after construction: what changes while running is the geometry (the layout the winch re-meshes) and ChainData
+// (the currents, the actuators), and the loads are evaluated for a given ChainGeometry and ChainData.
 //
 // Indexing in code is 0-based: element e = 0..nu joins joint e (forward, toward the ship) and joint e+1;
 // joint 0 is the tow point x_1, joint nu is the bail x_{nu+1}, joint nu+1 the tail point x_{nu+2}.
@@ -80,12 +80,11 @@ struct ChainGeometry
   double totalLength() const { return cableLength() + (end_body ? end_length : 0.0); }
 };
 
-// Everything about the chain that changes while it runs, apart from the integrator's state (joint positions
-// and velocities, cable out and its rate): the geometry after the last step, the currents, the actuators
-// and the winch command. The right-hand side reads it and never writes it.
+// What changes while the simulation runs and all its chains share, apart from the integrator's state (joint
+// positions and velocities, cable out and its rate) and each chain's geometry (Chain): the currents, the
+// actuators and the winch command. The right-hand side reads it and never writes it.
 struct ChainData
 {
-  ChainGeometry geometry;      // after the last accepted step (the winch re-meshes between steps)
   Environment environment;     // gravity and density as the model's; the currents now
   Actuators actuators;         // the end body's fins and thrust
   double winch_command = 0.0;  // [m/s] payout rate commanded, positive pays out
@@ -130,7 +129,7 @@ public:
              std::shared_ptr<const EndBody> end_body, const Environment& env, const NumericsParams& numerics,
              std::shared_ptr<const Seabed> seabed = nullptr);
 
-  // As configured (the winch changes the running chain's: see ChainData::geometry).
+  // As configured (the winch changes the running chain's: Chain::geometry).
   ChainGeometry initialGeometry() const;
   int segments() const { return segments_; }          // nu, all sections
   int elementCount() const { return segments_ + 1; }  // nu + 1
@@ -140,7 +139,7 @@ public:
   double cableLength() const { return initialGeometry().cableLength(); }  // [m] as configured
   double totalLength() const { return initialGeometry().totalLength(); }
 
-  // The data at rest at time t [s]: the configured geometry and environment, the actuators at rest.
+  // The data at rest at time t [s]: the configured environment, the actuators at rest.
   ChainData initialData(double t = 0.0) const;
 
   int sectionCount() const { return static_cast<int>(sections_.size()); }

@@ -41,58 +41,55 @@ std::vector<double> segmentStrains(const ChainGeometry& geometry, const Eigen::M
 // rigid links carry compression; a real cable would go slack there).
 std::vector<bool> slackFlags(const Eigen::Matrix3Xd& joints, const Eigen::Matrix3Xd& tensions);
 
-// The integrator's state vector: joint positions x_2 .. x_{nu+2} (3 x (nu+1)), their velocities, the cable
-// out [m] and the payout rate [m/s], in that order. Named views instead of index arithmetic.
+// A chain's block of the integrator's state vector: joint positions x_2 .. x_{nu+2} (3 x (nu+1); 3 x nu
+// without an end body), their velocities, then the cable out [m] and the payout rate [m/s] (the chain the
+// winch pays out: the simulator's first), then a free first joint's position and velocity, in that order.
+// Named views instead of index arithmetic.
 struct StateLayout
 {
-  int joints = 0;     // nu + 1
-  bool free = false;  // a parted cable: the free first joint's position and velocity follow (6 more)
-  int ship_side = 0;  // and the joints of the cable left on the ship, x_2 .. x_j: positions, velocities
-  std::size_t shipSideOffset() const { return 6 * static_cast<std::size_t>(joints) + 2 + (free ? 6 : 0); }
-  std::size_t size() const { return shipSideOffset() + 6 * static_cast<std::size_t>(ship_side); }
-  Eigen::Map<Eigen::Matrix3Xd> shipSidePositions(std::vector<double>& y) const
+  int joints = 0;          // nu + 1 (nu without an end body)
+  bool free = false;       // the first joint is free (a parted end): its position and velocity follow (6 more)
+  std::size_t offset = 0;  // where the block starts in the state vector
+  bool winch = true;       // the cable out and the payout rate follow the velocities (2 more)
+  std::size_t size() const { return winchOffset() + (winch ? 2 : 0) + (free ? 6 : 0) - offset; }
+  std::size_t end() const { return offset + size(); }  // where the next block starts
+  Eigen::Map<Eigen::Matrix3Xd> positions(std::vector<double>& y) const { return { y.data() + offset, 3, joints }; }
+  Eigen::Map<const Eigen::Matrix3Xd> positions(const std::vector<double>& y) const
   {
-    return { y.data() + shipSideOffset(), 3, ship_side };
+    return { y.data() + offset, 3, joints };
   }
-  Eigen::Map<const Eigen::Matrix3Xd> shipSidePositions(const std::vector<double>& y) const
+  Eigen::Map<Eigen::Matrix3Xd> velocities(std::vector<double>& y) const
   {
-    return { y.data() + shipSideOffset(), 3, ship_side };
+    return { y.data() + offset + 3 * joints, 3, joints };
   }
-  Eigen::Map<Eigen::Matrix3Xd> shipSideVelocities(std::vector<double>& y) const
-  {
-    return { y.data() + shipSideOffset() + 3 * ship_side, 3, ship_side };
-  }
-  Eigen::Map<const Eigen::Matrix3Xd> shipSideVelocities(const std::vector<double>& y) const
-  {
-    return { y.data() + shipSideOffset() + 3 * ship_side, 3, ship_side };
-  }
-  Eigen::Map<Eigen::Matrix3Xd> positions(std::vector<double>& y) const { return { y.data(), 3, joints }; }
-  Eigen::Map<const Eigen::Matrix3Xd> positions(const std::vector<double>& y) const { return { y.data(), 3, joints }; }
-  Eigen::Map<Eigen::Matrix3Xd> velocities(std::vector<double>& y) const { return { y.data() + 3 * joints, 3, joints }; }
   Eigen::Map<const Eigen::Matrix3Xd> velocities(const std::vector<double>& y) const
   {
-    return { y.data() + 3 * joints, 3, joints };
+    return { y.data() + offset + 3 * joints, 3, joints };
   }
-  double& cableOut(std::vector<double>& y) const { return y[6 * static_cast<std::size_t>(joints)]; }
-  double cableOut(const std::vector<double>& y) const { return y[6 * static_cast<std::size_t>(joints)]; }
-  double& payoutRate(std::vector<double>& y) const { return y[6 * static_cast<std::size_t>(joints) + 1]; }
-  double payoutRate(const std::vector<double>& y) const { return y[6 * static_cast<std::size_t>(joints) + 1]; }
+  double& cableOut(std::vector<double>& y) const { return y[winchOffset()]; }
+  double cableOut(const std::vector<double>& y) const { return y[winchOffset()]; }
+  double& payoutRate(std::vector<double>& y) const { return y[winchOffset() + 1]; }
+  double payoutRate(const std::vector<double>& y) const { return y[winchOffset() + 1]; }
   Eigen::Map<Eigen::Vector3d> freePosition(std::vector<double>& y) const
   {
-    return Eigen::Map<Eigen::Vector3d>(y.data() + 6 * joints + 2);
+    return Eigen::Map<Eigen::Vector3d>(y.data() + freeOffset());
   }
   Eigen::Map<const Eigen::Vector3d> freePosition(const std::vector<double>& y) const
   {
-    return Eigen::Map<const Eigen::Vector3d>(y.data() + 6 * joints + 2);
+    return Eigen::Map<const Eigen::Vector3d>(y.data() + freeOffset());
   }
   Eigen::Map<Eigen::Vector3d> freeVelocity(std::vector<double>& y) const
   {
-    return Eigen::Map<Eigen::Vector3d>(y.data() + 6 * joints + 5);
+    return Eigen::Map<Eigen::Vector3d>(y.data() + freeOffset() + 3);
   }
   Eigen::Map<const Eigen::Vector3d> freeVelocity(const std::vector<double>& y) const
   {
-    return Eigen::Map<const Eigen::Vector3d>(y.data() + 6 * joints + 5);
+    return Eigen::Map<const Eigen::Vector3d>(y.data() + freeOffset() + 3);
   }
+
+private:
+  std::size_t winchOffset() const { return offset + 6 * static_cast<std::size_t>(joints); }
+  std::size_t freeOffset() const { return winchOffset() + (winch ? 2 : 0); }
 };
 
 // Raises every joint of `state` that lies below the bottom onto it (a start from a shape computed

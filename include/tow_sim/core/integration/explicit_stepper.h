@@ -29,9 +29,17 @@ public:
   // moved, h the smaller step to try.
   bool dopri5(const System& f, StateVector& y, StateVector& dydt, double& t, double& h);
 
+  // One step of `stepper` (rk4 or dopri5) toward t_end [s], no longer than `limit` [s] (the winch's): rk4's
+  // fixed step, or dopri5's from the proposal dt [s] within max_step. Accepted: true, y, dydt = f(y, t) and t
+  // advanced (to t_end exactly when the step reaches it), dt the next proposal. Rejected: false, nothing
+  // moved, dt the smaller step to try.
+  bool step(StepperType stepper, const System& f, StateVector& y, StateVector& dydt, double& t, double& dt,
+            double t_end, double limit);
+
 private:
   struct Odeint;
   std::unique_ptr<Odeint> odeint_;
+  NumericsParams num_;
 };
 
 }  // namespace tow_sim

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <limits>
 #include <optional>
+#include <vector>
 
 #include "tow_sim/core/chain/chain_model.h"
 
@@ -59,5 +60,13 @@ struct StepReport
   double max_strain = -std::numeric_limits<double>::infinity();
   std::optional<PartingEvent> parting;  // the cable parted during these steps (advanceTo goes on after it)
 };
+
+// An elastic cable's slack segments after a step (joints x_1 .. x_{nu+2}, each element's axial multiplier
+// [N]): a segment goes slack when it carries no tension at or below its rest length (not when its damping
+// alone zeroes the tension of a still stretched segment) and snaps when it carries tension again; the snaps
+// and the largest strain go into the report. `slack` holds each segment's flag between steps; of another
+// size (after a restart) it is set afresh, a restart at the rest lengths (a straight line) not slack.
+void countSnaps(const ChainGeometry& geometry, const Eigen::Matrix3Xd& joints, const std::vector<double>& multipliers,
+                std::vector<char>& slack, StepReport& report);
 
 }  // namespace tow_sim

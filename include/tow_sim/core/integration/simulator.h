@@ -12,6 +12,7 @@
 #include <optional>
 #include <vector>
 
+#include "tow_sim/core/chain/chain.h"
 #include "tow_sim/core/chain/chain_model.h"
 #include "tow_sim/core/chain/chain_solver.h"
 #include "tow_sim/core/chain/chain_state.h"
@@ -78,7 +79,7 @@ public:
 
   // The cable parted (cable.break_at_breaking_load, or part()): the chain is the vehicle side, from a free
   // first joint; the winch is stopped, and the steppers are explicit (dopri5; rk4 if configured).
-  bool parted() const { return free_; }
+  bool parted() const { return vehicleSide().freeFirst(); }
   // Where and when it parted at its breaking load (checkBreak; kept until rejoin() or restoreState(), so an
   // advance that throws after it does not lose it). Empty after a part() by hand.
   const std::optional<PartingEvent>& partingEvent() const { return parting_event_; }
@@ -86,7 +87,7 @@ public:
   // body: docs/solver.md §10): its joints from the tow point (empty: none) and the force on each segment at
   // its forward joint [N]. shipTension() is |T_1| of whichever chain hangs from the ship (0: none).
   Eigen::Matrix3Xd shipSideJoints() const;
-  const Eigen::Matrix3Xd& shipSideTensions() const { return ship_side_tensions_; }
+  const Eigen::Matrix3Xd& shipSideTensions() const;
   double shipTension() const;
   // Parts the cable now at element e's forward joint (0: the tow point .. nu: the bail): the elements
   // forward of it leave the simulation, the joint's position and velocity become the free end's. Throws
@@ -103,11 +104,18 @@ public:
   // The data that changes while running. Commands act from time(); the currents are validated first
   // (std::invalid_argument naming the field).
   const ChainData& data() const { return data_; }
-  bool command(double rudder, double elevator, double thrust);              // true if something saturated
-  bool commandAt(double t, double rudder, double elevator, double thrust);  // from time t [s] (a restart)
-  void resetActuators(double t);                                            // fins centred, no thrust, from time t [s]
-  void setCurrent(const Eigen::Vector3d& current_W);
-  void setCurrentProfile(const std::vector<CurrentSample>& profile);
+  bool command(double rudder, double elevator, double thrust)  // true if something saturated
+  {
+    return commandAt(t_, rudder, elevator, thrust);
+  }
+  bool commandAt(double t, double rudder, double elevator, double thrust)  // from time t [s] (a restart)
+  {
+    return model_->endBody().command(data_.actuators, t, rudder, elevator, thrust);
+  }
+  // Fins centred, no thrust, from time t [s].
+  void resetActuators(double t) { data_.actuators = model_->endBody().restingActuators(t); }
+  void setCurrent(const Eigen::Vector3d& current_W) { tow_sim::setCurrent(data_, current_W); }
+  void setCurrentProfile(const std::vector<CurrentSample>& profile) { tow_sim::setCurrentProfile(data_, profile); }
   void setWaveTime(double wave_time) { tow_sim::setWaveTime(data_, wave_time); }
 
   // Winch: the commanded payout rate [m/s] (positive pays out), saturated at +-max_rate (returned).
@@ -129,38 +137,38 @@ public:
   ShipEndState shipEnd() const { return ship_(t_); }            // the ship's tow point, parted or not
   ShipEndState firstJoint() const { return towPoint(t_, y_); }  // x_1: the tow point, or the free end once parted
   // The element lengths now (the winch changes the layout): geometry().segments is nu now.
-  const ChainGeometry& geometry() const { return data_.geometry; }
+  const ChainGeometry& geometry() const { return vehicleSide().geometry(); }
   // Joints x_1 .. x_{nu+2} (3 x (nu+2)) with the tow point first.
   Eigen::Matrix3Xd jointPositions() const;
   // T_1 .. T_{nu+1} at the current state (force on element lambda at its forward joint) [N].
-  const Eigen::Matrix3Xd& tensions() const { return tensions_; }
+  const Eigen::Matrix3Xd& tensions() const { return vehicleSide().tensions(); }
   // Joint accelerations x_2 .. x_{nu+2} at the current state [m/s^2].
-  const Eigen::Matrix3Xd& accelerations() const { return accelerations_; }
+  const Eigen::Matrix3Xd& accelerations() const { return vehicleSide().accelerations(); }
   // Current relative length error (after projection): the end body's alone for an elastic cable.
   double lengthError() const;
   // Each element's axial multiplier mu at the current state [N], compression positive: an elastic
   // segment's is minus its tension (0 when slack).
-  const std::vector<double>& axialMultipliers() const { return multipliers_; }
+  const std::vector<double>& axialMultipliers() const { return vehicleSide().axialMultipliers(); }
   // Kinematics of element e (0 .. nu) at the current state; e = nu is the vehicle.
   ElementKinematics elementKinematics(int e) const;
 
   const ChainModel& model() const { return *model_; }
 
 private:
-  StateLayout layout() const
-  {
-    return StateLayout{ data_.geometry.jointCount(), free_, free_ ? ship_side_.segments : 0 };
-  }
-  // The chain's first joint at (t, y): the ship's tow point, or the free end of a parted cable (its
-  // acceleration unknown: 0 here).
-  ShipEndState towPoint(double t, const StateVector& y) const;
+  // The chains in the state vector's order (docs/solver.md §10): the first ends at the end body and holds the
+  // cable out and the payout rate (the whole cable, or its vehicle side from a free first joint once parted);
+  // a second, after a parting aft of the tow point, is the cable left on the ship, its last joint free.
+  Chain& vehicleSide() { return chains_.front(); }
+  const Chain& vehicleSide() const { return chains_.front(); }
+  const StateLayout& layout() const { return vehicleSide().layout(); }
+  // The chain's first joint at (t, y): the ship's tow point, or the free end of a parted cable.
+  ShipEndState towPoint(double t, const StateVector& y) const { return vehicleSide().firstJoint(ship_(t), y); }
+  void wholeCable();                    // one chain as configured, the cable out as configured, at rest
   StepperType stepper() const;          // the configured one, explicit once parted
   void checkBreak(StepReport& report);  // parts the cable where a tension exceeds breaking_load
-  // The element lengths for the state y at time t: the first segment from the cable out, its rates from
-  // the winch law (the model's as configured while the winch is off).
+  // The vehicle side's element lengths for the state y: the first segment's from the cable out and the
+  // winch's rate law while it runs (paidOut), as they are otherwise.
   ChainGeometry geometryOf(const StateVector& y) const;
-  // validate(winch_, cable) of the first section, with the limits less the sections aft of it.
-  void validateWinch() const;
   bool remesh(double t);  // split or merge the first segment (remeshFirstSegment, winch.h)
   void project(double t);
   void refreshOutputs();
@@ -170,38 +178,27 @@ private:
   bool stepImplicit(double t_end, double winch_step, StepReport& report);
   bool implicit() const;                        // numerics.stepper is implicit or implicit_fixed
   void linearise();                             // the implicit stepper's J at the current state (after refreshOutputs)
-  double largestRelativeSpeed(double t) const;  // [m/s] fastest joint relative to the tow point
+  double largestRelativeSpeed(double t) const;  // [m/s] fastest joint relative to its chain's first joint
+  void countSnaps(StepReport& report)           // an elastic cable's vehicle side
+  {
+    if (model_->elastic())
+      tow_sim::countSnaps(geometry(), jointPositions(), axialMultipliers(), slack_, report);
+  }
 
   static constexpr double kMinStep = 1e-10;  // [s] smallest adaptive step before the integration fails
 
   std::shared_ptr<const ChainModel> model_;
   ShipMotion ship_;
   std::unique_ptr<ExplicitStepper> explicit_;  // sized for the state (re-made when it changes size)
-  mutable ChainSolver solver_;                 // workspace only
   WinchParams winch_;
-  ChainData data_;
+  ChainData data_;             // shared by the chains
+  std::vector<Chain> chains_;  // at least one: vehicleSide()
   double t_ = 0.0;
   double dt_ = 0.0;  // next adaptive step
-  StateVector y_;    // StateLayout
+  StateVector y_;    // the chains' blocks in order
   StateVector dydt_;
-  Eigen::Matrix3Xd tensions_, accelerations_;
-  std::vector<double> multipliers_;  // each element's axial multiplier at the current state [N]
-  std::vector<char> slack_;          // elastic cable: each segment slack (for counting snaps)
+  std::vector<char> slack_;  // elastic cable: each segment slack (for counting snaps)
   std::optional<PartingEvent> parting_event_;
-  ChainGeometry ship_side_ = noShipSide();  // parted: the cable left on the ship (segments 0: none)
-  mutable ChainSolver ship_side_solver_;    // workspace only
-  Eigen::Matrix3Xd ship_side_tensions_;
-  static ChainGeometry noShipSide();
-  void clearShipSide();  // none (rejoin, restoreState)
-  // The seabed's force on the free end of the vehicle side (at its first joint, the contact of half the
-  // first segment's length; zero without a seabed or for the end body alone).
-  Eigen::Vector3d freeEndContact(const ChainGeometry& geometry, const ShipEndState& end) const;
-  void shipSideDerivative(double t, const StateVector& y, StateVector& dydt) const;
-  void shipSideOutputs();
-  void projectShipSide(double t);
-  double shipSideLengthError() const;
-  bool free_ = false;  // parted: the first joint is free (its state after the payout rate)
-  void countSnaps(StepReport& report);
   ImplicitStepper implicit_;
   const RosenbrockTableau* tableau_ = nullptr;  // the implicit steppers' method
   StateVector y_next_, error_;                  // the implicit step's

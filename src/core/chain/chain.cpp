@@ -1,0 +1,135 @@
+#include "tow_sim/core/chain/chain.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+namespace tow_sim
+{
+Chain::Chain(const ChainGeometry& geometry, const StateLayout& layout) : geometry_(geometry), layout_(layout)
+{
+  layout_.joints = geometry_.jointCount();
+  tensions_.setZero(3, layout_.joints);
+  accelerations_.setZero(3, layout_.joints);
+}
+
+ShipEndState Chain::firstJoint(const ShipEndState& ship, const StateVector& y) const
+{
+  if (!layout_.free)
+    return ship;
+  ShipEndState end;
+  end.p_W = layout_.freePosition(y);
+  end.v_W = layout_.freeVelocity(y);
+  return end;
+}
+
+void Chain::derivative(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data, double t,
+                       const ShipEndState& ship, const StateVector& y, StateVector& dydt) const
+{
+  const StateLayout& L = layout_;
+  L.positions(dydt) = L.velocities(y);
+  Eigen::Map<Eigen::Matrix3Xd> a = L.velocities(dydt);
+  if (!L.free)
+  {
+    solver_.solve(model, geometry, data, t, ship, L.positions(y), L.velocities(y), a);
+    return;
+  }
+  const ShipEndState end = firstJoint(ship, y);
+  L.freePosition(dydt) = L.freeVelocity(y);
+  L.freeVelocity(dydt) = solver_.solveFree(model, geometry, data, t, end, L.positions(y), L.velocities(y), a, nullptr,
+                                           nullptr, freeEndContact(model, geometry, end));
+}
+
+void Chain::refresh(const ChainModel& model, const ChainData& data, double t, const ShipEndState& ship,
+                    const StateVector& y, StateVector& dydt)
+{
+  const StateLayout& L = layout_;
+  tensions_.resize(3, L.joints);
+  accelerations_.resize(3, L.joints);
+  if (L.free)
+  {
+    const ShipEndState end = firstJoint(ship, y);
+    L.freePosition(dydt) = L.freeVelocity(y);
+    L.freeVelocity(dydt) =
+        solver_.solveFree(model, geometry_, data, t, end, L.positions(y), L.velocities(y), accelerations_, &tensions_,
+                          &multipliers_, freeEndContact(model, geometry_, end));
+  }
+  else
+    solver_.solve(model, geometry_, data, t, ship, L.positions(y), L.velocities(y), accelerations_, &tensions_,
+                  &multipliers_);
+  L.positions(dydt) = L.velocities(y);
+  L.velocities(dydt) = accelerations_;
+}
+
+void Chain::project(const ChainModel& model, const ShipEndState& ship, StateVector& y) const
+{
+  const StateLayout& L = layout_;
+  auto x = L.positions(y);
+  auto v = L.velocities(y);
+  const ShipEndState first_joint = firstJoint(ship, y);
+  Eigen::Vector3d x_f = first_joint.p_W;
+  Eigen::Vector3d v_f = first_joint.v_W;
+  const int first = firstKeptElement(model);
+  for (int e = 0; e < L.joints; ++e)
+  {
+    if (e < first)
+    {
+      x_f = x.col(e);
+      v_f = v.col(e);
+      continue;
+    }
+    const Eigen::Vector3d s = (x.col(e) - x_f).normalized();
+    x.col(e) = x_f + geometry_.elementLength(e) * s;
+    // Relative velocity along the element: none, but the winch's rate on the first segment.
+    const double along = e == 0 ? geometry_.first_rate : 0.0;
+    v.col(e) -= (s.dot(v.col(e) - v_f) - along) * s;
+    x_f = x.col(e);
+    v_f = v.col(e);
+  }
+}
+
+double Chain::lengthError(const ChainModel& model, const ShipEndState& ship, const StateVector& y) const
+{
+  return maxRelativeLengthError(geometry_, firstJoint(ship, y).p_W, layout_.positions(y), firstKeptElement(model));
+}
+
+double Chain::largestRelativeSpeed(const ShipEndState& ship, const StateVector& y) const
+{
+  if (layout_.joints == 0)
+    return 0.0;
+  return (layout_.velocities(y).colwise() - firstJoint(ship, y).v_W).colwise().norm().maxCoeff();
+}
+
+Eigen::Matrix3Xd Chain::jointPositions(const ShipEndState& ship, const StateVector& y) const
+{
+  Eigen::Matrix3Xd p(3, layout_.joints + 1);
+  p.col(0) = firstJoint(ship, y).p_W;
+  p.rightCols(layout_.joints) = layout_.positions(y);
+  return p;
+}
+
+ElementKinematics Chain::elementKinematics(int e, const ShipEndState& ship, const StateVector& y) const
+{
+  if (e < 0 || e >= layout_.joints)
+    throw std::out_of_range("elementKinematics: element " + std::to_string(e) + " is not in 0 .. " +
+                            std::to_string(layout_.joints - 1));
+  const auto x = layout_.positions(y);
+  const auto v = layout_.velocities(y);
+  const ShipEndState first = firstJoint(ship, y);
+  const Eigen::Vector3d x_f = e == 0 ? first.p_W : Eigen::Vector3d(x.col(e - 1));
+  const Eigen::Vector3d v_f = e == 0 ? first.v_W : Eigen::Vector3d(v.col(e - 1));
+  return ElementKinematics::fromJoints(x_f, x.col(e), v_f, v.col(e));
+}
+
+Eigen::Vector3d Chain::freeEndContact(const ChainModel& model, const ChainGeometry& geometry,
+                                      const ShipEndState& end) const
+{
+  const Seabed* bottom = model.seabed();
+  if (!bottom || geometry.segments == 0)
+    return Eigen::Vector3d::Zero();
+  const double carried = 0.5 * geometry.elementLength(0);  // as each segment's aft joint (ChainModel::forEachContact)
+  return bottom->contactForce(end.p_W, end.v_W, bottom->params().stiffness * carried,
+                              bottom->params().damping * carried);
+}
+
+}  // namespace tow_sim
