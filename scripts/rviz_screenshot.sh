@@ -3,6 +3,8 @@
 # Usage: scripts/rviz_screenshot.sh OUT.png [SECONDS_TO_RUN (default 40)] [manoeuvre (default turn)] [config.yaml]
 # SECONDS_TO_RUN `markers`: as soon as the cable is laid out and rviz listens to cable/markers (at most
 # 120 s), plus 3 s to draw them.
+# SHOTS=N (default 1): N screenshots 2 s apart, OUT-1.png .. OUT-N.png, the last also as OUT.png (software
+# GL on a loaded machine can take a while to draw the first frame with the cable in it).
 # Needs a built workspace (make build); uses Xvfb and ImageMagick's import.
 set -euo pipefail
 out="$(realpath -m "${1:?usage: rviz_screenshot.sh OUT.png [seconds] [manoeuvre]}")"
@@ -15,17 +17,30 @@ export PATH=/usr/bin:/bin:$PATH
 set +u
 source "$ws/devel/setup.bash"
 set -u
-display=":$((90 + RANDOM % 9))"
-Xvfb "$display" -screen 0 1280x860x24 >/dev/null 2>&1 &
+shots="${SHOTS:-1}"
+# Xvfb picks a free display itself and writes its number to the pipe (no clash with another X server).
+display_file="$(mktemp)"
+Xvfb -displayfd 3 -screen 0 1280x860x24 3>"$display_file" >/dev/null 2>&1 &
 xvfb_pid=$!
+launch_pid=""
+cleanup() {
+  [[ -n "$launch_pid" ]] && kill "$launch_pid" 2>/dev/null && sleep 2
+  kill "$xvfb_pid" 2>/dev/null || true
+}
+trap cleanup EXIT
+for _ in $(seq 50); do
+  [[ -s "$display_file" ]] && break
+  sleep 0.2
+done
+[[ -s "$display_file" ]] || { echo "rviz_screenshot.sh: Xvfb did not start" >&2; exit 1; }
+display=":$(head -n 1 "$display_file")"
+rm -f "$display_file"
 export DISPLAY="$display" LIBGL_ALWAYS_SOFTWARE=1
 port=$((11400 + RANDOM % 500))
 export ROS_MASTER_URI="http://localhost:$port"
 roslaunch -p "$port" tow_sim tow_sim.launch rviz:=true manoeuvre:="$manoeuvre" print_status:=false \
   ${config:+config:="$(realpath "$config")"} >/tmp/tow_sim_screenshot_launch.log 2>&1 &
 launch_pid=$!
-cleanup() { kill "$launch_pid" 2>/dev/null || true; sleep 2; kill "$xvfb_pid" 2>/dev/null || true; }
-trap cleanup EXIT
 if [[ "$seconds" == markers ]]; then
   # The node publishes cable/markers once the cable is laid out (at the first ship odometry) and while
   # someone listens: wait until rviz subscribes and the markers flow (`rostopic bw` needs no message
@@ -42,5 +57,14 @@ if [[ "$seconds" == markers ]]; then
 else
   sleep "$seconds"
 fi
-import -window root "$out"
-echo "wrote $out"
+if ((shots <= 1)); then
+  import -window root "$out"
+  echo "wrote $out"
+  exit 0
+fi
+for k in $(seq "$shots"); do
+  import -window root "${out%.png}-$k.png"
+  ((k < shots)) && sleep 2
+done
+cp "${out%.png}-$shots.png" "$out"
+echo "wrote ${out%.png}-1.png .. ${out%.png}-$shots.png and $out"
