@@ -7,6 +7,7 @@
 #include "tow_sim/config/node_params.h"
 #include "tow_sim/config/param_yaml.h"
 #include "tow_sim/core/environment/seabed.h"
+#include "tow_sim/core/integration/winch.h"
 #include "tow_sim/core/param_tables.h"
 #include "tow_sim/core/vehicle/vehicle.h"
 
@@ -30,6 +31,68 @@ void readCurrentProfile(Section& s, Environment& e)
     item.read("velocity", sample.velocity_W);
     item.finish();
     e.current_profile.push_back(sample);
+  }
+}
+
+// cable.sections: each entry the cable's keys, those left out the cable level's (read before); length and
+// segments required. The cable level's length and segments, when left out, are the sections' sums.
+void readSections(Section& s, SimulationConfig& c)
+{
+  c.sections.clear();
+  for (Section item : s.items("sections"))
+  {
+    for (const char* key : { "length", "segments" })
+      if (!item.has(key))
+        fail(item.path(key), "is required in each section");
+    for (const char* key : { "safe_working_load", "breaking_load", "break_at_breaking_load" })
+      if (item.has(key))
+        fail(item.path(key), std::string("is the whole cable's: set it at ") + s.path(key));
+    for (const char* key : { "sections", "bodies" })
+      if (item.has(key))
+        fail(item.path(key), "sections do not nest: give every section and every body at " + s.path(key));
+    CableParams section = c.cable;
+    ParamReader r(item);
+    r.read(cableParams(), section);
+    r.finish();
+    validate(section, item.name());
+    c.sections.push_back(section);
+  }
+  if (c.sections.empty())
+    return;
+  double length = 0.0;
+  int segments = 0;
+  for (const CableParams& section : c.sections)
+  {
+    length += section.length;
+    segments += section.segments;
+  }
+  if (!s.has("length"))
+    c.cable.length = length;
+  if (!s.has("segments"))
+    c.cable.segments = segments;
+}
+
+// cable.bodies: {at, mass, displaced_volume, drag_area, added_mass}; `at` required.
+void readBodies(Section& s, SimulationConfig& c)
+{
+  c.bodies.clear();
+  for (Section item : s.items("bodies"))
+  {
+    CableBodyParams b;
+    if (!item.has("at"))
+      fail(item.path("at"), "is required: the body's distance from the tow point along the cable [m]");
+    item.read("at", b.at);
+    item.read("mass", b.body.mass);
+    item.read("displaced_volume", b.body.displaced_volume);
+    item.read("drag_area", b.body.drag_area);
+    item.read("added_mass", b.body.added_mass);
+    item.finish();
+    requireInRange(item.path("at"), b.at, 0.0, 1e5, "[m] (from the tow point along the cable)", kOpen);
+    requireInRange(item.path("mass"), b.body.mass, 0.0, 1e7, "[kg]");
+    requireInRange(item.path("displaced_volume"), b.body.displaced_volume, 0.0, 1e4, "[m^3]");
+    requireInRange(item.path("drag_area"), b.body.drag_area, 0.0, 1e3, "[m^2] (C_D A)");
+    requireInRange(item.path("added_mass"), b.body.added_mass, 0.0, 1e7, "[kg]");
+    c.bodies.push_back(b);
   }
 }
 
@@ -158,6 +221,8 @@ SimulationConfig loadConfigUnguarded(const YAML::Node& root, const std::string& 
   ParamReader cable = section("cable"), environment = section("environment"), numerics = section("numerics"),
               vehicle = section("vehicle"), winch = section("winch"), seabed = section("seabed");
   cable.read(cableParams(), c.cable);
+  readSections(cable.at(""), c);
+  readBodies(cable.at(""), c);
   environment.read(environmentParams(), c.environment);
   readCurrentProfile(environment.at(""), c.environment);
   numerics.read(numericsParams(), c.numerics);
@@ -171,7 +236,8 @@ SimulationConfig loadConfigUnguarded(const YAML::Node& root, const std::string& 
   validate(c.environment, prefix + "environment");
   validate(c.numerics, prefix + "numerics");
   validate(c.vehicle, prefix + "vehicle");
-  validate(c.winch, c.cable, prefix + "winch");
+  validateSectionsAndBodies(c, prefix);
+  validate(c.winch, cableSections(c), prefix + "winch");
   validate(c.seabed, prefix + "seabed");
   return c;
 }
@@ -238,6 +304,26 @@ YAML::Node toYaml(const SimulationConfig& c)
 {
   YAML::Node root;
   detail::writeParams(root["cable"], cableParams(), c.cable);
+  root["cable"]["sections"] = YAML::Node(YAML::NodeType::Sequence);
+  for (const CableParams& section : c.sections)
+  {
+    YAML::Node item(YAML::NodeType::Map);
+    detail::writeParams(item, cableParams(), section);
+    for (const char* key : { "safe_working_load", "breaking_load", "break_at_breaking_load" })
+      item.remove(key);
+    root["cable"]["sections"].push_back(item);
+  }
+  root["cable"]["bodies"] = YAML::Node(YAML::NodeType::Sequence);
+  for (const CableBodyParams& b : c.bodies)
+  {
+    YAML::Node item;
+    item["at"] = b.at;
+    item["mass"] = b.body.mass;
+    item["displaced_volume"] = b.body.displaced_volume;
+    item["drag_area"] = b.body.drag_area;
+    item["added_mass"] = b.body.added_mass;
+    root["cable"]["bodies"].push_back(item);
+  }
   detail::writeParams(root["environment"], environmentParams(), c.environment);
   root["environment"]["current_profile"] = YAML::Node(YAML::NodeType::Sequence);
   for (const CurrentSample& sample : c.environment.current_profile)

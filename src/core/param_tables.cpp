@@ -40,7 +40,19 @@ const ParamTable<CableParams>& cableParams()
                           "EA: set, the cable stretches and carries tension only, T = max(0, EA ε + c ε̇); "
                           "unset, the rigid chain (the report's)")
           .number("axial_damping", &C::axial_damping, "N s", 0.0, 1e10, kClosed,
-                  "c of the elastic cable, the axial force per unit strain rate (needs axial_stiffness)");
+                  "c of the elastic cable, the axial force per unit strain rate (needs axial_stiffness)")
+          .custom("sections", "", "[]",
+                  "each needs length and segments; lengths add up to length; ≤ 100000 segments in all; all "
+                  "elastic or all rigid",
+                  "[{length: L, segments: n, diameter: …}, …] from the tow point aft: each entry takes this "
+                  "level's keys (a key left out is this level's) but the load limits, which are the whole "
+                  "cable's; length and segments here may be left out (the sums); empty: one uniform cable. The "
+                  "winch pays out and hauls in the first section")
+          .custom("bodies", "m, kg, m^3, m^2", "[]",
+                  "at on a joint, in (0, length]; the rest ≥ 0; with the winch, not inside the first section",
+                  "[{at: m, mass: kg, displaced_volume: m³, drag_area: m², added_mass: kg}, …]: point bodies at "
+                  "joints (clumps, floats), at metres along the cable from the tow point; weight less buoyancy, "
+                  "drag ½ρ C_D A |u| u against the flow with drag_area C_D A, isotropic added mass");
   return table;
 }
 

@@ -13,8 +13,33 @@
 
 namespace tow_sim
 {
-namespace
+void payOutTo(SimulationConfig& config, double cable_out)
 {
+  CableParams& first = config.sections.empty() ? config.cable : config.sections.front();
+  const double aft = config.cable.length - first.length, length = cable_out - aft;
+  if (!(length > 0.0))
+  {
+    std::ostringstream os;
+    os << "cable out " << cable_out << " m: not more than the " << aft
+       << " m of the sections aft of the first, which stay as they are";
+    throw std::invalid_argument(os.str());
+  }
+  for (CableBodyParams& b : config.bodies)
+  {
+    if (b.at < first.length - 1e-6)
+    {
+      std::ostringstream os;
+      os << "cable.bodies: the body at " << b.at << " m is inside the first section (" << first.length
+         << " m), whose length changes with the cable out; put it aft of it";
+      throw std::invalid_argument(os.str());
+    }
+    b.at += length - first.length;
+  }
+  const int first_segments = std::max(1, static_cast<int>(std::lround(length / first.segmentLength())));
+  config.cable.segments += first_segments - first.segments;
+  first.segments = first_segments;
+  first.length = length;
+  config.cable.length = cable_out;
 }
 
 ChartPoint chartPoint(const SimulationConfig& config, double speed, double cable_out, const Eigen::Vector3d& current_W)
@@ -28,8 +53,7 @@ ChartPoint chartPoint(const SimulationConfig& config, double speed, double cable
   try
   {
     SimulationConfig c = config;
-    c.cable.segments = std::max(1, static_cast<int>(std::lround(cable_out / config.cable.segmentLength())));
-    c.cable.length = cable_out;
+    payOutTo(c, cable_out);
     c.environment.current_W = current_W;
     c.environment.waves = WaveParams();         // the steady tow is a calm-water one
     c.winch.enabled = false;                    // the chart's lengths are the cable out, whatever the winch's limits

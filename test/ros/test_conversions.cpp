@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "tow_sim/config/config.h"
 #include "tow_sim/core/constants.h"
 #include "tow_sim/ros/conversions.h"
 
@@ -134,6 +135,36 @@ TEST(Conversions, TensionColoursRunBlueGreenRedAndMagentaForSlack)
   EXPECT_EQ(rgb(5000.0, false), Eigen::Vector4d(1, 0, 0, 1));
   EXPECT_EQ(rgb(250.0, false), Eigen::Vector4d(0, 0.5, 0.5, 1));
   EXPECT_EQ(rgb(500.0, true), Eigen::Vector4d(1, 0, 1, 1));
+}
+
+// cable.sections and cable.bodies as the parameter server holds them (rosparam load of a YAML file: lists of
+// structs, integers where the file wrote no decimal point) reach the configuration loader intact.
+TEST(Conversions, CableSectionsAndBodiesFromTheParameterServer)
+{
+  XmlRpc::XmlRpcValue tree, cable, upper, lower, clump;
+  upper["length"] = 400;
+  upper["segments"] = 40;
+  lower["length"] = 150.0;
+  lower["segments"] = 30;
+  lower["diameter"] = 0.012;
+  clump["at"] = 400;
+  clump["mass"] = 500.0;
+  clump["drag_area"] = 0.3;
+  cable["diameter"] = 0.017;
+  cable["sections"][0] = upper;
+  cable["sections"][1] = lower;
+  cable["bodies"][0] = clump;
+  tree["cable"] = cable;
+  const SimulationConfig c = loadConfig(ros_conv::toYaml(tree), "/tow_sim/");
+  ASSERT_EQ(c.sections.size(), 2u);
+  EXPECT_EQ(c.sections[0].length, 400.0);
+  EXPECT_EQ(c.sections[0].diameter, 0.017);
+  EXPECT_EQ(c.sections[1].segments, 30);
+  EXPECT_EQ(c.sections[1].diameter, 0.012);
+  EXPECT_EQ(c.cable.length, 550.0);
+  ASSERT_EQ(c.bodies.size(), 1u);
+  EXPECT_EQ(jointBodies(c).front().joint, 30);
+  EXPECT_EQ(c.bodies[0].body.mass, 500.0);
 }
 
 }  // namespace

@@ -28,6 +28,11 @@ struct ChartPoint
   std::string error;
 };
 
+// `config` with cable_out [m] of cable: the first section (the whole cable without sections) paid out or
+// hauled in to it, in segments of its length (at least one), the bodies aft of it moving with the cable. Throws
+// std::invalid_argument for a cable out not longer than the sections aft of the first, or a body inside it.
+void payOutTo(SimulationConfig& config, double cable_out);
+
 // The steady tow of `config` with cable_out [m] of cable (segments of the configuration's length, at least
 // one), the ship at speed [m/s] along +x and the uniform current current_W [m/s] (world), the tow point
 // at the surface.

@@ -119,8 +119,9 @@ bool isStable(const Balance& b, const Eigen::Vector3d& s)
 EquilibriumResult shoot(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data, double t,
                         const Eigen::Vector3d& tow_point_W, const Eigen::Vector3d& ship_velocity_W,
                         const Eigen::Matrix3Xd& joints, int iterations, const std::vector<double>& lengths);
-std::vector<double> elementLengths(const ChainModel& model, const ChainGeometry& geometry,
-                                   const Eigen::Vector3d& tow_point_W, const EquilibriumResult* stretched);
+std::vector<double> elementLengths(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data,
+                                   double t, const Eigen::Vector3d& tow_point_W, const Eigen::Vector3d& ship_velocity_W,
+                                   const EquilibriumResult* stretched);
 }  // namespace
 
 EquilibriumResult steadyTowEquilibrium(const ChainModel& model, double t, const Eigen::Vector3d& tow_point_W,
@@ -146,7 +147,8 @@ EquilibriumResult steadyTowEquilibrium(const ChainModel& model, const ChainGeome
   EquilibriumResult result;
   for (int pass = 0; pass < (repeat ? kMaxPasses : 1); ++pass)
   {
-    const std::vector<double> lengths = elementLengths(model, geometry, tow_point_W, pass > 0 ? &result : nullptr);
+    const std::vector<double> lengths =
+        elementLengths(model, geometry, data, t, tow_point_W, ship_velocity_W, pass > 0 ? &result : nullptr);
     result = shoot(model, geometry, data, t, tow_point_W, ship_velocity_W, joints, result.iterations, lengths);
     const double moved = (result.state.x - joints).cwiseAbs().maxCoeff();
     joints = result.state.x;
@@ -175,10 +177,22 @@ bool firstStable(const Balance& b, const Eigen::Vector3d (&candidates)[N], doubl
   return false;
 }
 
+// The pull on element e at its aft joint x_W [m], moving at v_W [m/s], under the cable below's T_below [N]:
+// T_below less the load of a point body at that joint (its steady balance, docs/solver.md §11). The tension
+// reported at that joint stays the cable's below.
+Eigen::Vector3d pullAbove(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data, double t,
+                          int e, const Eigen::Vector3d& x_W, const Eigen::Vector3d& v_W, const Eigen::Vector3d& T_below)
+{
+  const JointBody* body = model.bodyAft(e, geometry);
+  return body ? Eigen::Vector3d(T_below - body->force(data.environment, t, x_W, v_W)) : T_below;
+}
+
 // The element lengths: the geometry's; for an elastic cable with a solution `stretched` at hand, each
-// segment stretched by its tension there, N = -s.(T_fwd + T_aft)/2 (its static balance, docs/solver.md §8).
-std::vector<double> elementLengths(const ChainModel& model, const ChainGeometry& geometry,
-                                   const Eigen::Vector3d& tow_point_W, const EquilibriumResult* stretched)
+// segment stretched by its tension there, N = -s.(T_fwd + T_aft)/2 (its static balance, docs/solver.md §8), T_aft
+// the pull of what hangs below it (the cable's less a point body's load at that joint).
+std::vector<double> elementLengths(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data,
+                                   double t, const Eigen::Vector3d& tow_point_W, const Eigen::Vector3d& ship_velocity_W,
+                                   const EquilibriumResult* stretched)
 {
   const int n = geometry.elementCount();
   std::vector<double> lengths(static_cast<size_t>(n));
@@ -189,7 +203,8 @@ std::vector<double> elementLengths(const ChainModel& model, const ChainGeometry&
       continue;
     const Eigen::Matrix3Xd& x = stretched->state.x;
     const Eigen::Vector3d s = (x.col(e) - (e == 0 ? tow_point_W : Eigen::Vector3d(x.col(e - 1)))).normalized();
-    const Eigen::Vector3d aft = stretched->tensions.col(e + 1);
+    const Eigen::Vector3d aft =
+        pullAbove(model, geometry, data, t, e, x.col(e), ship_velocity_W, stretched->tensions.col(e + 1));
     length *= 1.0 + std::max(-0.5 * s.dot(stretched->tensions.col(e) + aft), 0.0) /
                         *model.segmentCable(e, geometry).axial_stiffness;
   }
@@ -213,8 +228,9 @@ EquilibriumResult shoot(const ChainModel& model, const ChainGeometry& geometry, 
   Eigen::Vector3d T_aft = Eigen::Vector3d::Zero();
   for (int e = n - 1; e >= 0; --e)
   {
+    const Eigen::Vector3d T_above = pullAbove(model, geometry, data, t, e, joints.col(e), ship_velocity_W, T_aft);
     const Balance b{
-      model, geometry, data, e, t, ship_velocity_W, T_aft, joints.col(e), lengths[static_cast<size_t>(e)]
+      model, geometry, data, e, t, ship_velocity_W, T_above, joints.col(e), lengths[static_cast<size_t>(e)]
     };
     Eigen::Vector3d F_guess;
     b.residual(guess, &F_guess);

@@ -60,20 +60,28 @@ void stopAtLimits(const WinchParams& winch, double& length, double& rate)
 
 void validate(const WinchParams& winch, const ChainModel& model)
 {
-  if (model.sectionCount() == 1)
+  std::vector<CableParams> sections;
+  for (int i = 0; i < model.sectionCount(); ++i)
+    sections.push_back(model.section(i).cable);
+  validate(winch, sections);
+}
+
+void validate(const WinchParams& winch, const std::vector<CableParams>& sections, const std::string& prefix)
+{
+  if (sections.size() == 1 || !winch.enabled)  // a winch that does not run: its table's ranges
   {
-    validate(winch, model.cable());
+    validate(winch, sections.front(), prefix);
     return;
   }
   double aft = 0.0;
-  for (int i = 1; i < model.sectionCount(); ++i)
-    aft += model.section(i).cable.length;
+  for (size_t i = 1; i < sections.size(); ++i)
+    aft += sections[i].length;
   WinchParams first = winch;
   first.min_length -= aft;
   first.max_length -= aft;
   try
   {
-    validate(first, model.cable());
+    validate(first, sections.front(), prefix);
   }
   catch (const std::invalid_argument& e)
   {

@@ -32,8 +32,8 @@ double tickTarget(double now, double wanted, double available, double step, doub
 TowRun::TowRun(const SimulationConfig& config, std::shared_ptr<ShipHistory> ship, const InitialShape& initial)
     : config_(config),
       vehicle_(std::make_shared<Vehicle>(config.vehicle, config.numerics)),
-      model_(std::make_shared<ChainModel>(config.cable, vehicle_, config.environment, config.numerics,
-                                          makeSeabed(config.seabed))),
+      model_(std::make_shared<ChainModel>(cableSections(config), jointBodies(config), vehicle_, config.environment,
+                                          config.numerics, makeSeabed(config.seabed))),
       ship_(std::move(ship)),
       initial_(initial),
       sim_(
@@ -41,6 +41,7 @@ TowRun::TowRun(const SimulationConfig& config, std::shared_ptr<ShipHistory> ship
 {
   if (!ship_)
     throw std::invalid_argument("TowRun: no ship history given");
+  validateSectionsAndBodies(config);
 }
 
 void TowRun::schedule(std::vector<CommandEvent> commands)

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <string>
 #include <vector>
 
 #include "tow_sim/core/chain/chain_model.h"
@@ -31,6 +32,8 @@ void stopAtLimits(const WinchParams& winch, double& length, double& rate);
 // the first section only (docs/solver.md §11): its limits, less the cable of the sections aft of it, are the
 // first section's (std::invalid_argument saying so).
 void validate(const WinchParams& winch, const ChainModel& model);
+// The same for cable sections from the tow point aft, naming the winch's keys under `prefix` ("winch").
+void validate(const WinchParams& winch, const std::vector<CableParams>& sections, const std::string& prefix = "winch");
 
 // Keeps the first segment's length within [segment_min_fraction, segment_max_fraction] x the nominal d:
 // above the band a new joint splits it d from its aft end, below it merges into the second segment (within
