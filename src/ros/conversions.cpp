@@ -158,6 +158,13 @@ tow_sim::CableState toCableState(const TowSnapshot& s, const std_msgs::Header& h
     state.vehicle_altitude = s.vehicle_altitude;
   state.vehicle_on_seabed = s.vehicle_on_seabed;
   state.max_length_error = s.max_length_error;
+  for (int section : s.segment_section)
+    state.section.push_back(static_cast<uint16_t>(section));
+  for (const BodyOutput& b : s.bodies)
+  {
+    state.body_joint.push_back(b.joint);
+    state.body_tension_above.push_back(b.joint >= 0 ? b.tension_above.norm() : 0.0);
+  }
   return state;
 }
 

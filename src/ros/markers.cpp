@@ -1,7 +1,10 @@
 #include "tow_sim/ros/markers.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+
+#include "tow_sim/core/constants.h"
 
 #include "tow_sim/ros/conversions.h"
 
@@ -46,14 +49,60 @@ std_msgs::ColorRGBA grey(double level)
   return c;
 }
 
-// Cable: tow point to bail, each joint coloured by its tension (magenta where slack).
-visualization_msgs::Marker cableMarker(const TowSnapshot& s, const NodeParams& params, const std_msgs::Header& header)
+// Cable: tow point to bail, each joint coloured by its tension (magenta where slack); with sections, a strip
+// for each (ids 0 .. sections - 1: a section the winch or a parting left without segments is deleted).
+void addCable(const TowSnapshot& s, const NodeParams& params, const CableLook& look, const std_msgs::Header& header,
+              visualization_msgs::MarkerArray& array)
 {
   std::vector<double> tensions(static_cast<size_t>(s.segments) + 1);
   for (int j = 0; j <= s.segments; ++j)
     tensions[static_cast<size_t>(j)] = s.tensions.col(j).norm();
-  return tensionLine(header, s.joints.leftCols(s.segments + 1), tensions, s.slack, params.cable_marker_width,
-                     params.tension_color_max);
+  if (look.section_widths.size() <= 1)
+  {
+    array.markers.push_back(tensionLine(header, s.joints.leftCols(s.segments + 1), tensions, s.slack,
+                                        params.cable_marker_width, params.tension_color_max));
+    return;
+  }
+  for (size_t i = 0; i < look.section_widths.size(); ++i)
+  {
+    const auto first = std::find(s.segment_section.begin(), s.segment_section.end(), static_cast<int>(i));
+    const auto last = std::find_if(first, s.segment_section.end(), [&](int k) { return k != static_cast<int>(i); });
+    const Eigen::Index from = first - s.segment_section.begin(), count = last - first;
+    visualization_msgs::Marker m =
+        tensionLine(header, s.joints.middleCols(from, count > 0 ? count + 1 : 0),
+                    std::vector<double>(tensions.begin() + from, tensions.begin() + from + (count > 0 ? count + 1 : 0)),
+                    std::vector<bool>(s.slack.begin() + from, s.slack.begin() + from + (count > 0 ? count + 1 : 0)),
+                    look.section_widths[i], params.tension_color_max);
+    m.id = static_cast<int>(i);
+    if (count == 0)
+      m.action = visualization_msgs::Marker::DELETE;
+    array.markers.push_back(m);
+  }
+}
+
+// Point bodies: spheres at their joints (deleted once a parting took one off the vehicle side).
+void addBodies(const TowSnapshot& s, const CableLook& look, const std_msgs::Header& header,
+               visualization_msgs::MarkerArray& array)
+{
+  for (size_t i = 0; i < s.bodies.size() && i < look.body_diameters.size(); ++i)
+  {
+    visualization_msgs::Marker m =
+        baseMarker(header, "cable_bodies", static_cast<int>(i), visualization_msgs::Marker::SPHERE);
+    const BodyOutput& b = s.bodies[i];
+    if (b.joint < 0)
+      m.action = visualization_msgs::Marker::DELETE;
+    else
+      m.pose.position = ros_conv::toPoint(b.p_W);
+    m.scale.x = m.scale.y = m.scale.z = look.body_diameters[i];
+    m.color = grey(0.25);  // a clump
+    if (look.body_floats[i])
+    {
+      m.color.r = 1.0;  // a float: yellow
+      m.color.g = 0.85;
+      m.color.b = 0.0;
+    }
+    array.markers.push_back(m);
+  }
 }
 
 // After a parting aft of the tow point, the cable left on the ship ("cable_ship_side"; deleted when none).
@@ -212,12 +261,27 @@ visualization_msgs::Marker trailMarker(const TrackTrail& trail, const Eigen::Vec
 }
 }  // namespace
 
+CableLook cableLook(const SimulationConfig& config, double width)
+{
+  CableLook look;
+  for (const CableParams& section : config.sections)
+    look.section_widths.push_back(width * std::clamp(section.diameter / config.sections.front().diameter, 0.25, 4.0));
+  const double rho = config.environment.water_density;
+  for (const CableBodyParams& b : config.bodies)
+  {
+    look.body_diameters.push_back(std::max(3.0 * width, std::cbrt(6.0 * b.body.displaced_volume / kPi)));
+    look.body_floats.push_back(rho * b.body.displaced_volume > b.body.mass);
+  }
+  return look;
+}
+
 visualization_msgs::MarkerArray makeMarkers(const TowSnapshot& s, const VehicleParams& vehicle, const Seabed* seabed,
                                             const NodeParams& params, const std_msgs::Header& header,
-                                            const MarkerTrails& trails)
+                                            const MarkerTrails& trails, const CableLook& look)
 {
   visualization_msgs::MarkerArray array;
-  array.markers.push_back(cableMarker(s, params, header));
+  addCable(s, params, look, header, array);
+  addBodies(s, look, header, array);
   array.markers.push_back(shipSideMarker(s, params, header));
   addVehicle(s, vehicle, params, header, array);
   addForceAndLabels(s, params, header, array);

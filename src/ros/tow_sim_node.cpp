@@ -139,8 +139,11 @@ TowSimNode::TowSimNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   if (params_.print_status)
     status_timer_ = nh_.createTimer(
         ros::Duration(1.0), [this](const ros::TimerEvent&) { guarded("status line", [this] { printStatus(); }); });
-  ROS_INFO("tow_sim: %.0f m cable in %d segments, %.0f kg vehicle; waiting for %s in frame '%s'", config_.cable.length,
-           config_.cable.segments, config_.vehicle.mass, odom_sub_.getTopic().c_str(), params_.world_frame.c_str());
+  ROS_INFO(
+      "tow_sim: %.0f m cable in %d segments (%zu sections, %zu point bodies), %.0f kg vehicle; waiting for %s in "
+      "frame '%s'",
+      config_.cable.length, config_.cable.segments, std::max<size_t>(1, config_.sections.size()), config_.bodies.size(),
+      config_.vehicle.mass, odom_sub_.getTopic().c_str(), params_.world_frame.c_str());
 }
 
 template <class M>
@@ -355,7 +358,8 @@ void TowSimNode::publishTick()
   }
   if (marker_pub_.getNumSubscribers() > 0)
     marker_pub_.publish(makeMarkers(snapshot, config_.vehicle, live_.run().seabed(), params_, header,
-                                    MarkerTrails{ ship_trail_.get(), vehicle_trail_.get() }));
+                                    MarkerTrails{ ship_trail_.get(), vehicle_trail_.get() },
+                                    cableLook(config_, params_.cable_marker_width)));
 }
 
 void TowSimNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)

@@ -13,17 +13,22 @@
 
 namespace tow_sim
 {
-const char* timeseriesHeader()
+std::string timeseriesHeader(size_t bodies)
 {
-  return "t,ship_x,ship_y,ship_z,ship_speed,vehicle_x,vehicle_y,vehicle_z,vehicle_roll,vehicle_pitch,vehicle_yaw,depth,"
-         "layback,diversion,diversion_rate,tension_ship,tension_vehicle,rudder,elevator,thrust,max_length_error,"
-         "cable_length,payout_rate,vehicle_altitude,seabed_contacts,depth_setpoint,tension_ship_min,tension_ship_max,"
-         "tension_vehicle_min,tension_vehicle_max,snap_count,max_strain";
+  std::string header =
+      "t,ship_x,ship_y,ship_z,ship_speed,vehicle_x,vehicle_y,vehicle_z,vehicle_roll,vehicle_pitch,vehicle_yaw,depth,"
+      "layback,diversion,diversion_rate,tension_ship,tension_vehicle,rudder,elevator,thrust,max_length_error,"
+      "cable_length,payout_rate,vehicle_altitude,seabed_contacts,depth_setpoint,tension_ship_min,tension_ship_max,"
+      "tension_vehicle_min,tension_vehicle_max,snap_count,max_strain";
+  for (size_t i = 1; i <= bodies; ++i)
+    for (const char* column : { "_x", "_y", "_depth", "_tension_above", "_tension_below" })
+      header += ",body" + std::to_string(i) + column;
+  return header;
 }
 
-const char* shapesHeader()
+std::string shapesHeader(bool sections)
 {
-  return "t,joint,x,y,z,tension,slack";
+  return sections ? "t,joint,x,y,z,tension,slack,section" : "t,joint,x,y,z,tension,slack";
 }
 
 std::string timeseriesRow(const TowSnapshot& s)
@@ -43,6 +48,15 @@ std::string timeseriesRow(const TowSnapshot& s)
     row << *s.depth_setpoint;  // blank without an autopilot
   row << ',' << s.tension_ship_range.min << ',' << s.tension_ship_range.max << ',' << s.tension_vehicle_range.min << ','
       << s.tension_vehicle_range.max << ',' << s.snap_count << ',' << s.max_strain;
+  for (const BodyOutput& b : s.bodies)
+  {
+    row << ',';
+    if (b.joint >= 0)  // blank once a parting took it off the vehicle side
+      row << b.p_W.x() << ',' << b.p_W.y() << ',' << b.depth << ',' << b.tension_above.norm() << ','
+          << b.tension_below.norm();
+    else
+      row << ",,,,";
+  }
   return row.str();
 }
 
@@ -60,14 +74,19 @@ std::string eventsRows(const BatchResult& result)
   return rows.str();
 }
 
-std::string shapesRows(const TowSnapshot& s)
+std::string shapesRows(const TowSnapshot& s, bool sections)
 {
   std::ostringstream rows;
   rows.precision(10);
   for (Eigen::Index j = 0; j < s.joints.cols(); ++j)
+  {
     rows << s.t << ',' << j + 1 << ',' << s.joints(0, j) << ',' << s.joints(1, j) << ',' << s.joints(2, j) << ','
          << (j <= s.segments ? s.tensions.col(j).norm() : 0.0) << ','
-         << (j <= s.segments && s.slack[static_cast<size_t>(j)] ? 1 : 0) << '\n';
+         << (j <= s.segments && s.slack[static_cast<size_t>(j)] ? 1 : 0);
+    if (sections)  // the segment aft of the joint's; -1 at the bail and the tail (the vehicle)
+      rows << ',' << (j < s.segments ? s.segment_section[static_cast<size_t>(j)] : -1);
+    rows << '\n';
+  }
   return rows.str();
 }
 
@@ -148,8 +167,9 @@ void runScenario(const Scenario& sc, std::ostream& series, std::ostream& shapes,
   else
     result.start_warning = run.start(0.0);
 
-  series << timeseriesHeader() << '\n';
-  shapes << shapesHeader() << '\n';
+  const bool sections = !sc.config.sections.empty();
+  series << timeseriesHeader(sc.config.bodies.size()) << '\n';
+  shapes << shapesHeader(sections) << '\n';
   const long outputs = std::lround(sc.duration / sc.output_interval);
   const long shapes_every = std::max(1L, std::lround(sc.shape_interval / sc.output_interval));
   std::size_t next_save = 0;
@@ -165,7 +185,7 @@ void runScenario(const Scenario& sc, std::ostream& series, std::ostream& shapes,
     result.parting = s.parting;
     series << timeseriesRow(s) << '\n';
     if (i % shapes_every == 0 || i == outputs)
-      shapes << shapesRows(s);
+      shapes << shapesRows(s, sections);
     result.t_reached = t;
     result.rows = i - first + 1;
     if (progress)

@@ -1,15 +1,32 @@
 #include "tow_sim/scenario/shape_replay.h"
 
 #include <algorithm>
+#include <fstream>
 #include <stdexcept>
 
 #include "tow_sim/core/io/numeric_csv.h"
 
 namespace tow_sim
 {
+namespace
+{
+// A run with cable sections writes an eighth column, `section` (README, "Batch runs").
+bool hasSectionColumn(const std::string& path)
+{
+  std::ifstream in(path);
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty() && line[0] != '#' && line.find_first_not_of(" \t\r") != std::string::npos)
+      return line.find(",section") != std::string::npos;
+  return false;
+}
+}  // namespace
+
 std::vector<ShapeFrame> readShapes(const std::string& path)
 {
-  const std::vector<NumericCsvRow> rows = readNumericCsv(path, 7, "shapes file", "t, joint, x, y, z, tension, slack");
+  const bool sections = hasSectionColumn(path);
+  const std::vector<NumericCsvRow> rows =
+      readNumericCsv(path, sections ? 8 : 7, "shapes file",
+                     sections ? "t, joint, x, y, z, tension, slack, section" : "t, joint, x, y, z, tension, slack");
   std::vector<ShapeFrame> frames;
   std::vector<Eigen::Vector3d> joints;
   auto close = [&]

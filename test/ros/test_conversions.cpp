@@ -8,6 +8,7 @@
 #include "tow_sim/config/config.h"
 #include "tow_sim/core/constants.h"
 #include "tow_sim/ros/conversions.h"
+#include "tow_sim/ros/markers.h"
 
 namespace tow_sim
 {
@@ -165,6 +166,56 @@ TEST(Conversions, CableSectionsAndBodiesFromTheParameterServer)
   ASSERT_EQ(c.bodies.size(), 1u);
   EXPECT_EQ(jointBodies(c).front().joint, 30);
   EXPECT_EQ(c.bodies[0].body.mass, 500.0);
+}
+
+// Sections and point bodies in cable/state (each segment's section; each body's joint and pull above, 0 and
+// -1 once off the vehicle side) and in the markers (a strip a section, of its own width; a sphere a body,
+// yellow when it floats).
+TEST(Conversions, SectionsAndBodiesInCableStateAndMarkers)
+{
+  TowSnapshot s = snapshot();
+  s.segment_section = { 0, 1 };
+  s.bodies.resize(2);
+  s.bodies[0].joint = 1;
+  s.bodies[0].p_W = s.joints.col(1);
+  s.bodies[0].tension_above = Eigen::Vector3d(0.0, 3.0, 4.0);
+  s.bodies[1].joint = -1;
+  const tow_sim::CableState c = ros_conv::toCableState(s, header());
+  EXPECT_EQ(c.section, (std::vector<uint16_t>{ 0, 1 }));
+  EXPECT_EQ(c.body_joint, (std::vector<int32_t>{ 1, -1 }));
+  EXPECT_EQ(c.body_tension_above, (std::vector<double>{ 5.0, 0.0 }));
+
+  SimulationConfig config;
+  config.sections = { CableParams(), CableParams() };
+  config.sections[1].diameter = 2.0 * config.sections[0].diameter;
+  config.bodies.resize(2);
+  config.bodies[0].body.mass = 100.0;
+  config.bodies[0].body.displaced_volume = 0.01;  // a clump
+  config.bodies[1].body.displaced_volume = 0.5;   // a float
+  const CableLook look = cableLook(config, 0.1);
+  EXPECT_EQ(look.section_widths, (std::vector<double>{ 0.1, 0.2 }));
+  EXPECT_EQ(look.body_floats, (std::vector<bool>{ false, true }));
+  EXPECT_NEAR(look.body_diameters[1], std::cbrt(6.0 * 0.5 / kPi), 1e-12);
+  EXPECT_NEAR(look.body_diameters[0], 0.3, 1e-12);  // at least three line widths
+  const visualization_msgs::MarkerArray markers =
+      makeMarkers(s, VehicleParams(), nullptr, NodeParams(), header(), MarkerTrails(), look);
+  std::vector<const visualization_msgs::Marker*> strips, spheres;
+  for (const visualization_msgs::Marker& m : markers.markers)
+  {
+    if (m.ns == "cable")
+      strips.push_back(&m);
+    if (m.ns == "cable_bodies")
+      spheres.push_back(&m);
+  }
+  ASSERT_EQ(strips.size(), 2u);
+  EXPECT_EQ(strips[0]->points.size(), 2u);  // x_1 .. x_2
+  EXPECT_EQ(strips[1]->points.size(), 2u);  // x_2 .. the bail x_3
+  EXPECT_EQ(strips[1]->scale.x, 0.2);
+  EXPECT_EQ(strips[1]->points[0].x, -10.0);
+  ASSERT_EQ(spheres.size(), 2u);
+  EXPECT_EQ(spheres[0]->pose.position.x, -10.0);
+  EXPECT_EQ(spheres[0]->action, visualization_msgs::Marker::ADD);
+  EXPECT_EQ(spheres[1]->action, visualization_msgs::Marker::DELETE);
 }
 
 }  // namespace

@@ -26,12 +26,25 @@ struct MarkerTrails
   const TrackTrail* vehicle = nullptr;  // of the vehicle's CG
 };
 
-// Cable line strip coloured by tension (ns "cable"), hull and four fins at their actual angles
+// How cable sections and point bodies are drawn (from the configuration: cableLook).
+struct CableLook
+{
+  std::vector<double> section_widths;  // [m] each section's line width; empty or one: a single line
+  std::vector<double> body_diameters;  // [m] each point body's sphere (cable.bodies' order)
+  std::vector<bool> body_floats;       // buoyant (yellow) or not (dark grey)
+};
+// Each section's width: `width` [m] times its diameter over the first section's (0.25 .. 4 times); each
+// body's sphere of its displaced volume, at least 3 `width` across.
+CableLook cableLook(const SimulationConfig& config, double width);
+
+// Cable line strip coloured by tension (ns "cable"; with sections one strip each, ids 0 ..., of its own width),
+// point bodies as spheres ("cable_bodies", id i the i-th body), hull and four fins at their actual angles
 // ("vehicle", at the snapshot's published attitude), the tow force on the ship ("tow_force"), tension
 // labels ("labels"), the ship's hull outline and tow point ("ship"), the trails when given ("trails": 0
 // the ship, 1 the vehicle) and the seabed around the vehicle ("seabed", when there is one).
 visualization_msgs::MarkerArray makeMarkers(const TowSnapshot& s, const VehicleParams& vehicle, const Seabed* seabed,
                                             const NodeParams& params, const std_msgs::Header& header,
-                                            const MarkerTrails& trails = MarkerTrails());
+                                            const MarkerTrails& trails = MarkerTrails(),
+                                            const CableLook& look = CableLook());
 
 }  // namespace tow_sim

@@ -14,13 +14,14 @@
 
 namespace tow_sim
 {
-// The columns of timeseries.csv and of shapes.csv (README, "Batch runs").
-const char* timeseriesHeader();
-const char* shapesHeader();
+// The columns of timeseries.csv (five more for each of `bodies` point bodies) and of shapes.csv (a `section`
+// column with cable sections) (README, "Batch runs").
+std::string timeseriesHeader(size_t bodies = 0);
+std::string shapesHeader(bool sections = false);
 // One row of timeseries.csv for a snapshot (no line break); blank cells as documented.
 std::string timeseriesRow(const TowSnapshot& s);
 // The rows of shapes.csv for a snapshot: one per joint x_1 .. x_{nu+2}, each ending in a line break.
-std::string shapesRows(const TowSnapshot& s);
+std::string shapesRows(const TowSnapshot& s, bool sections = false);
 
 struct BatchResult
 {

@@ -1,5 +1,6 @@
 #include "tow_sim/core/run/simulation_config.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -70,6 +71,10 @@ std::vector<JointBody> jointBodies(const SimulationConfig& config, const std::st
 void validateSectionsAndBodies(const SimulationConfig& config, const std::string& prefix)
 {
   const std::string cable = prefix + "cable.";
+  if (config.sections.size() > 1000 || config.bodies.size() > 1000)
+    throw std::invalid_argument(cable + (config.sections.size() > 1000 ? "sections" : "bodies") + ": " +
+                                std::to_string(std::max(config.sections.size(), config.bodies.size())) +
+                                " entries; at most 1000");
   if (!config.sections.empty())
   {
     double length = 0.0;

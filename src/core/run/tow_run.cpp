@@ -332,6 +332,7 @@ TowSnapshot TowRun::snapshot()
   if (!s.joints.allFinite() || !s.tensions.allFinite())
     throw std::runtime_error("non-finite state at t = " + std::to_string(s.t) + " s");
   s.slack = slackFlags(s.joints, s.tensions);
+  sectionAndBodyOutputs(s);
   elasticOutputs(s);
   s.tension_ship = sim_.shipTension();  // parted: of the cable left on the ship (0: none)
   s.parted = sim_.parted();
@@ -375,6 +376,37 @@ TowSnapshot TowRun::snapshot()
     s.depth_setpoint = autopilot_->setpoint();
   s.parting = sim_.partingEvent();
   return s;
+}
+
+void TowRun::sectionAndBodyOutputs(TowSnapshot& s) const
+{
+  const ChainGeometry& geometry = sim_.geometry();
+  s.segment_section.resize(static_cast<size_t>(geometry.segments));
+  for (int e = 0; e < geometry.segments; ++e)
+    s.segment_section[static_cast<size_t>(e)] = geometry.sectionOf(e);
+  if (model_->bodies().empty())
+    return;
+  const ChainState state = sim_.state();  // x_2 .., like the accelerations
+  for (const JointBody& body : model_->bodies())
+  {
+    BodyOutput& out = s.bodies.emplace_back();
+    const int c = geometry.segments - body.joint;  // its column of the joints: x_1 is column 0
+    if (body.joint >= geometry.segments)
+    {
+      out.joint = -1;
+      out.p_W = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+      out.depth = out.p_W.z();
+      out.tension_above = out.tension_below = out.p_W;
+      continue;
+    }
+    out.joint = c;
+    out.p_W = s.joints.col(c);
+    out.depth = -out.p_W.z();
+    out.tension_below = s.tensions.col(c);
+    // The body's balance (docs/physics.md §11, (P47)): (m_p + m_a) a = T_above - T_below + f_p.
+    const Eigen::Vector3d f = body.force(sim_.data().environment, s.t, out.p_W, state.v.col(c - 1));
+    out.tension_above = out.tension_below - f + body.inertia() * sim_.accelerations().col(c - 1);
+  }
 }
 
 RunState TowRun::saveState() const

@@ -48,15 +48,27 @@ struct InitialShape
 };
 
 // Every output of the run at one instant (SI units, world ENU frame unless stated).
+// A point body on the cable (cable.bodies) in a snapshot: where it is and the cable's pull on either side.
+struct BodyOutput
+{
+  int joint = -1;  // its column of TowSnapshot::joints; -1: not on the vehicle side (a parting forward of it)
+  Eigen::Vector3d p_W = Eigen::Vector3d::Zero();            // [m]
+  double depth = 0.0;                                       // [m]
+  Eigen::Vector3d tension_above = Eigen::Vector3d::Zero();  // [N] the pull on the segment above it, toward the ship
+  Eigen::Vector3d tension_below = Eigen::Vector3d::Zero();  // [N] T at its joint: the cable below's
+};
+
 struct TowSnapshot
 {
-  double t = 0.0;             // [s]
-  ShipPose ship;              // the ship's reference point, heading and speed
-  ShipEndState tow_point;     // x_1
-  int segments = 0;           // nu (the winch changes it)
-  Eigen::Matrix3Xd joints;    // [m] x_1 .. x_{nu+2}, tow point first
-  Eigen::Matrix3Xd tensions;  // [N] T_1 .. T_{nu+1}, the pull toward the ship on each element's forward joint
-  std::vector<bool> slack;    // per element: a rigid link carries compression; an elastic segment no tension
+  double t = 0.0;                    // [s]
+  ShipPose ship;                     // the ship's reference point, heading and speed
+  ShipEndState tow_point;            // x_1
+  int segments = 0;                  // nu (the winch changes it)
+  Eigen::Matrix3Xd joints;           // [m] x_1 .. x_{nu+2}, tow point first
+  Eigen::Matrix3Xd tensions;         // [N] T_1 .. T_{nu+1}, the pull toward the ship on each element's forward joint
+  std::vector<bool> slack;           // per element: a rigid link carries compression; an elastic segment no tension
+  std::vector<int> segment_section;  // per cable segment of `joints`, tow point first: its section (0: the first)
+  std::vector<BodyOutput> bodies;    // cable.bodies, in the configuration's order
   double tension_ship = 0.0, tension_vehicle = 0.0;  // [N] |T_1|, |T_{nu+1}|
   double cable_length = 0.0, payout_rate = 0.0;      // [m], [m/s]
   // [N] the smallest and largest tension at the ship and at the vehicle over the steps since the previous
@@ -198,7 +210,8 @@ private:
   void applySetpoint(const AutopilotSetpoint& setpoint);
   long firstTickFrom(double t) const;  // the autopilot's first tick at or after t [s]
   VehicleOutputs vehicleOutputs() const;
-  void elasticOutputs(TowSnapshot& s);  // slack flags, snap count and strain of an elastic cable
+  void elasticOutputs(TowSnapshot& s);               // slack flags, snap count and strain of an elastic cable
+  void sectionAndBodyOutputs(TowSnapshot& s) const;  // each segment's section, each point body's place and pulls
 
   SimulationConfig config_;
   std::shared_ptr<const Vehicle> vehicle_;
