@@ -2,7 +2,8 @@
 // for each stepper, as the cable is cut finer (issue #12):
 //   steady   a 500 m cable towed at 2 m/s in a straight line, from its equilibrium;
 //   turn     the same ship turning 180 degrees to port on a 200 m radius from t = 0;
-//   deep     6000 m of 0.04 m, 6 kg/m cable at 1.5 m/s (steady), nu = 1000.
+//   deep     6000 m of 0.04 m, 6 kg/m cable at 1.5 m/s (steady), nu = 1000;
+//   two_part a two-part deep tow (sections, a clump and a float; nu = 600 + 100) beside its uniform cable.
 // Steppers: dopri5 (default tolerances), rk4 at its largest stable fixed step (from 2.5 / omega_max, the
 // zig-zag mode omega_max^2 = 12 T / (m_eff d^2) at the tow point's tension, shortened until 60 s of the run
 // go through), implicit (default tolerances); and implicit on an elastic cable (EA 1e8 N, c = 0.01 s EA).
@@ -14,6 +15,7 @@
 #include <cmath>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "tow_sim/core/constants.h"
 #include "tow_sim/core/run/tow_run.h"
@@ -88,6 +90,8 @@ double rk4Step(const SimulationConfig& c, double tension)
   return std::min(1.0, 2.5 / omega);
 }
 
+void timeRun(benchmark::State& state, const SimulationConfig& c, std::shared_ptr<ShipHistory> ship, double chunk);
+
 void BM_Tow(benchmark::State& state, Path path, bool deep, StepperType stepper, int segments, double chunk,
             ImplicitMethod method, double axial_stiffness)
 {
@@ -127,7 +131,48 @@ void BM_Tow(benchmark::State& state, Path path, bool deep, StepperType stepper, 
     state.counters["step_ms"] = 1e3 * c.numerics.fixed_step;
   }
   c.numerics.stepper = stepper;
-  TowRun run(c, shipPath(path, speed, duration));
+  timeRun(state, c, shipPath(path, speed, duration), chunk);
+}
+
+// A two-part deep tow (issue 27): 3000 m of armoured cable (0.0173 m, 1.2 kg/m) in 600 segments, a 1000 kg
+// clump, 200 m of near-neutral tether (0.02 m, 0.35 kg/m) in 100 segments with a float 100 m above the
+// vehicle, at 1 m/s; beside it (uniform) the armoured cable alone, 3200 m in 700 segments. Implicit stepper.
+void BM_TwoPart(benchmark::State& state, bool two_part)
+{
+  SimulationConfig c;
+  c.cable.diameter = 0.0173;
+  c.cable.mass_per_length = 1.2;
+  c.cable.length = 3200.0;
+  c.cable.segments = 700;
+  if (two_part)
+  {
+    CableParams main = c.cable, tether = c.cable;
+    main.length = 3000.0;
+    main.segments = 600;
+    tether.length = 200.0;
+    tether.segments = 100;
+    tether.diameter = 0.02;
+    tether.mass_per_length = 0.35;
+    c.sections = { main, tether };
+    c.bodies.resize(2);
+    c.bodies[0].at = 3000.0;
+    c.bodies[0].body.mass = 1000.0;
+    c.bodies[0].body.displaced_volume = 0.13;
+    c.bodies[0].body.drag_area = 0.4;
+    c.bodies[0].body.added_mass = 100.0;
+    c.bodies[1].at = 3100.0;
+    c.bodies[1].body.mass = 20.0;
+    c.bodies[1].body.displaced_volume = 0.05;
+    c.bodies[1].body.drag_area = 0.15;
+    c.bodies[1].body.added_mass = 50.0;
+  }
+  timeRun(state, c, shipPath(Path::kStraight, 1.0, 100.0), 10.0);
+}
+
+// Times `chunk` simulated seconds an iteration of a TowRun of c on `ship` after 2 s of start-up.
+void timeRun(benchmark::State& state, const SimulationConfig& c, std::shared_ptr<ShipHistory> ship, double chunk)
+{
+  TowRun run(c, std::move(ship));
   run.start(0.0);
   run.advanceTo(2.0);
   double simulated = 0.0;
@@ -188,6 +233,11 @@ void registerAll()
     benchmark::RegisterBenchmark((std::string("deep6km/") + v.label + "/nu:1000").c_str(), BM_Tow, Path::kStraight,
                                  true, v.stepper, 1000, 10.0, v.method, 0.0)
         ->Iterations(3)
+        ->Unit(benchmark::kMillisecond);
+  for (bool two_part : { false, true })
+    benchmark::RegisterBenchmark(two_part ? "two_part/implicit/nu:600+100" : "two_part/implicit_uniform/nu:700",
+                                 BM_TwoPart, two_part)
+        ->Iterations(5)
         ->Unit(benchmark::kMillisecond);
 }
 

@@ -180,6 +180,14 @@ TEST(ConfigSections, EachBadEntryIsRefusedByItsKey)
     const std::string error = errorOf(cases[i].first);
     EXPECT_NE(error.find(cases[i].second), std::string::npos) << "case " << i << ": " << error;
   }
+  // A body the cable cannot carry hanging at rest: below the clump hang, in water, the clump (500 - 61.5) g =
+  // 4301.7 N, the tether 150 (0.15 - 0.1159) g = 50.1 N, the float (2 - 20.5) g = -181.5 N and the example
+  // vehicle (180 - 123) g = 559.2 N: 4729.5 N in all.
+  const std::string heavy = errorOf(edited("  diameter: 0.017", "  breaking_load: 4700\n  diameter: 0.017"));
+  EXPECT_NE(heavy.find("/tow_sim/cable.bodies[0].mass = 500 [kg]: the cable cannot carry it"), std::string::npos)
+      << heavy;
+  EXPECT_NE(heavy.find("more than /tow_sim/cable.breaking_load = 4700 N"), std::string::npos) << heavy;
+  EXPECT_EQ(errorOf(edited("  diameter: 0.017", "  breaking_load: 4760\n  diameter: 0.017")), "(accepted)");
   // With the winch, a body at the first section's end is fine; so is a body at the bail of one cable.
   EXPECT_EQ(errorOf(kTwoPart + std::string("winch: {enabled: true, min_length: 300, max_length: 900}\n")),
             "(accepted)");

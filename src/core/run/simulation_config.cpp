@@ -5,6 +5,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "tow_sim/core/constants.h"
+
 namespace tow_sim
 {
 std::vector<CableParams> cableSections(const SimulationConfig& config)
@@ -35,6 +37,7 @@ std::vector<double> jointDistances(const std::vector<CableParams>& sections)
   }
   return at;
 }
+
 }  // namespace
 
 std::vector<JointBody> jointBodies(const SimulationConfig& config, const std::string& prefix)
@@ -67,6 +70,42 @@ std::vector<JointBody> jointBodies(const SimulationConfig& config, const std::st
   }
   return bodies;
 }
+
+namespace
+{
+// [N] the weight in water of what hangs below `at` [m] along the cable, at rest: the cable aft of it, the
+// bodies from it aft, the vehicle.
+double weightInWaterBelow(const SimulationConfig& config, double at)
+{
+  const double rho = config.environment.water_density, g = config.environment.gravity;
+  double weight = (config.vehicle.mass - rho * config.vehicle.displaced_volume) * g, start = 0.0;
+  for (const CableParams& s : cableSections(config))
+  {
+    const double below = std::clamp(start + s.length - at, 0.0, s.length);
+    weight += (s.mass_per_length - rho * kPi * s.diameter * s.diameter / 4.0) * g * below;
+    start += s.length;
+  }
+  for (const CableBodyParams& b : config.bodies)
+    if (b.at >= at - 1e-6)
+      weight += (b.body.mass - rho * b.body.displaced_volume) * g;
+  return weight;
+}
+
+void checkBreakingLoad(const SimulationConfig& config, const std::string& prefix)
+{
+  if (!config.cable.breaking_load)
+    return;
+  for (size_t i = 0; i < config.bodies.size(); ++i)
+  {
+    const double weight = weightInWaterBelow(config, config.bodies[i].at);
+    if (weight > *config.cable.breaking_load)
+      throw std::invalid_argument(
+          prefix + "cable.bodies[" + std::to_string(i) + "].mass = " + text(config.bodies[i].body.mass) +
+          " [kg]: the cable cannot carry it: hanging at rest, the body and what hangs below it weigh " + text(weight) +
+          " N in water, more than " + prefix + "cable.breaking_load = " + text(*config.cable.breaking_load) + " N");
+  }
+}
+}  // namespace
 
 void validateSectionsAndBodies(const SimulationConfig& config, const std::string& prefix)
 {
@@ -115,6 +154,7 @@ void validateSectionsAndBodies(const SimulationConfig& config, const std::string
           text(config.sections.empty() ? config.cable.length : config.sections.front().length) +
           " m (the first section's end), or add a section");
   }
+  checkBreakingLoad(config, prefix);
 }
 
 }  // namespace tow_sim
