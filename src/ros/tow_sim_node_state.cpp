@@ -4,6 +4,7 @@
 #include <exception>
 #include <string>
 
+#include "tow_sim/config/config.h"
 #include "tow_sim/core/io/saved_state.h"
 #include "tow_sim/ros/tow_sim_node.h"
 
@@ -30,7 +31,9 @@ bool TowSimNode::onSaveState(tow_sim::StateFile::Request& req, tow_sim::StateFil
   {
     try
     {
-      writeRunState(req.path, live_.run().saveState());
+      RunState state = live_.run().saveState();
+      state.configuration = configurationKeys(config_);
+      writeRunState(req.path, state);
       res.success = true;
       res.message = "saved the state at t = " + timeText(stamp(live_.run().time()).toSec()) + " s to " + req.path;
       ROS_INFO("tow_sim: %s", res.message.c_str());
@@ -57,6 +60,8 @@ bool TowSimNode::onLoadState(tow_sim::StateFile::Request& req, tow_sim::StateFil
     try
     {
       const RunState saved = readRunState(req.path);
+      if (!req.any_configuration)
+        requireSameConfiguration(saved.configuration, config_, "any_configuration: true loads it");
       live_.load(saved);  // refused: nothing changed
       const double t = live_.run().time();
       res.success = true;

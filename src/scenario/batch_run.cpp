@@ -6,6 +6,7 @@
 #include <memory>
 #include <sstream>
 
+#include "tow_sim/config/config.h"
 #include "tow_sim/core/constants.h"
 #include "tow_sim/core/io/saved_state.h"
 #include "tow_sim/scenario/ship_path.h"
@@ -96,6 +97,8 @@ namespace
 long restoreInitialState(const Scenario& sc, const ShipHistory& ship, TowRun& run, BatchResult& result)
 {
   RunState state = readRunState(sc.initial.path);
+  if (!sc.initial.any_configuration)
+    requireSameConfiguration(state.configuration, sc.config, "initial_state.any_configuration: true loads it");
   const double t = state.reached;
   if (!(t >= 0.0 && t <= sc.duration))
     throw std::invalid_argument("the state's time " + std::to_string(t) +
@@ -132,6 +135,24 @@ void advanceKeepingEvents(TowRun& run, double t, BatchResult& result)
 }
 }  // namespace
 
+namespace
+{
+// The scenario's autopilot, with the winch's feed-forward from the towing chart's planner (tow_sim_chart
+// --target-depth).
+AutopilotLoop autopilotLoop(const Scenario& sc)
+{
+  AutopilotLoop loop = sc.autopilot;
+  const SimulationConfig config = sc.config;
+  loop.cable_out_plan = [config](double depth, double speed)
+  {
+    const CableOutPlan plan = planCableOut(config, depth, speed, config.environment.current_W, config.winch.min_length,
+                                           config.winch.max_length);
+    return plan.reachable ? plan.cable_out : std::numeric_limits<double>::quiet_NaN();
+  };
+  return loop;
+}
+}  // namespace
+
 void runScenario(const Scenario& sc, std::ostream& series, std::ostream& shapes, BatchResult& result,
                  const std::function<void(double t)>& progress, const SaveStateSink& save_state)
 {
@@ -139,18 +160,7 @@ void runScenario(const Scenario& sc, std::ostream& series, std::ostream& shapes,
   TowRun run(sc.config, ship, sc.initial);
   run.schedule(sc.commands);
   if (sc.autopilot.enabled)
-  {
-    // The winch's feed-forward from the towing chart's planner (tow_sim_chart --target-depth).
-    AutopilotLoop loop = sc.autopilot;
-    const SimulationConfig config = sc.config;
-    loop.cable_out_plan = [config](double depth, double speed)
-    {
-      const CableOutPlan plan = planCableOut(config, depth, speed, config.environment.current_W,
-                                             config.winch.min_length, config.winch.max_length);
-      return plan.reachable ? plan.cable_out : std::numeric_limits<double>::quiet_NaN();
-    };
-    run.setAutopilot(loop);
-  }
+    run.setAutopilot(autopilotLoop(sc));
   result = BatchResult();
   long first = 0;
   if (sc.initial.type == InitialShape::Type::kFile)
@@ -180,7 +190,11 @@ void runScenario(const Scenario& sc, std::ostream& series, std::ostream& shapes,
     for (; next_save < sc.save_state_at.size() && sc.save_state_at[next_save] <= t + 1e-9 * std::max(1.0, t);
          ++next_save)
       if (save_state && !run.simulator().parted() && sc.save_state_at[next_save] >= t - 1e-9 * std::max(1.0, t))
-        save_state(t, run.saveState());
+      {
+        RunState state = run.saveState();
+        state.configuration = configurationKeys(sc.config);
+        save_state(t, state);
+      }
     const TowSnapshot s = run.snapshot();
     result.parting = s.parting;
     series << timeseriesRow(s) << '\n';

@@ -110,7 +110,10 @@ const ParamTable<InitialShape>& initialStateParams()
                    "ship frame (FLU), not zero: the line's direction")
           .custom("points", "m", "[]", "3 (ν + 1) numbers", "joints x_2 … x_{ν+2}, world, x y z each")
           .text("path", &I::path, "a readable state file, for file",
-                "a state saved by save_state_at or the node's ~save_state; relative to the scenario");
+                "a state saved by save_state_at or the node's ~save_state; relative to the scenario")
+          .boolean("any_configuration", &I::any_configuration,
+                   "for file: load a state saved under another configuration (else refused, naming the keys "
+                   "that differ)");
   return table;
 }
 

@@ -180,7 +180,7 @@ TEST(SavedState, BadFilesAreRefusedNamingTheField)
   EXPECT_NO_THROW(parseRunState(good, "good.txt"));
   expectRefusal("", "not a tow_sim state");
   expectRefusal("t 5\n" + good, "not a tow_sim state");
-  expectRefusal(withLine(good, "tow_sim_state", "tow_sim_state 2"), "format versions other than 1");
+  expectRefusal(withLine(good, "tow_sim_state", "tow_sim_state 3"), "format versions other than 1 and 2");
   expectRefusal(withLine(good, "heading", ""), "heading is missing");
   expectRefusal(good + "heading 1\n", "heading is given twice");
   expectRefusal(good + "colour 3\n", "colour is not a field");

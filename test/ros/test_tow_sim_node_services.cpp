@@ -1,6 +1,7 @@
 // rostest of tow_sim_node (the world: tow_sim_node_world.h): its services (pause, reset, save and load a
 // state, plan the cable out), restarts after divergence, re-acquiring the ship, the winch over the seabed, a
 // bad configuration, and the clock jumping back.
+#include "tow_sim/core/io/saved_state.h"
 #include "tow_sim_node_world.h"
 
 namespace tow_sim_test
@@ -121,6 +122,36 @@ TEST(TowSimNode, SaveAndLoadStateServicesRestoreTheShape)
   EXPECT_NEAR(world->rec_.state["base"].vehicle_depth, depth_saved, 0.3);  // the loaded run, untouched
   std::remove(path.c_str());
   std::remove(damaged_path.c_str());
+}
+
+// A state saved under another configuration (here: its numerics.max_step changed) is refused naming the key
+// with both values, and loaded when asked for with any_configuration.
+TEST(TowSimNode, AStateSavedUnderAnotherConfigurationIsRefusedUnlessAskedFor)
+{
+  ros::ServiceClient save = world->nh_.serviceClient<tow_sim::StateFile>("/base/tow_sim/save_state");
+  ros::ServiceClient load = world->nh_.serviceClient<tow_sim::StateFile>("/base/tow_sim/load_state");
+  ASSERT_TRUE(load.waitForExistence(ros::Duration(5.0)));
+  world->advance(1.0);
+  const std::string path = "/tmp/tow_sim_test_configuration_state.txt";
+  tow_sim::StateFile f;
+  f.request.path = path;
+  ASSERT_TRUE(save.call(f));
+  ASSERT_TRUE(f.response.success) << f.response.message;
+  tow_sim::RunState other = tow_sim::readRunState(path);
+  ASSERT_EQ(other.configuration.count("numerics.max_step"), 1u);
+  other.configuration.at("numerics.max_step") = "0.125";
+  tow_sim::writeRunState(path, other);
+  ASSERT_TRUE(load.call(f));
+  EXPECT_FALSE(f.response.success);
+  EXPECT_NE(f.response.message.find("1 key differs: numerics.max_step (saved 0.125, now "), std::string::npos)
+      << f.response.message;
+  f.request.any_configuration = true;
+  ASSERT_TRUE(load.call(f));
+  EXPECT_TRUE(f.response.success) << f.response.message;
+  world->advance(0.5);
+  std::lock_guard<std::mutex> lock(world->rec_.mutex);
+  EXPECT_TRUE(allFinite(world->rec_.state["base"]));
+  std::remove(path.c_str());
 }
 
 TEST(TowSimNode, DivergenceRestartsThenHoldsAndNothingNonFiniteIsPublished)

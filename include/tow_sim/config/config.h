@@ -4,6 +4,7 @@
 #pragma once
 
 #include <yaml-cpp/yaml.h>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,15 @@ std::string resolvePath(const std::string& file, const std::string& base_dir);
 
 // Writes a configuration back as YAML (every key, defaults filled in).
 YAML::Node toYaml(const SimulationConfig& config);
+
+// The configuration's keys and values as text, flattened from toYaml: `cable.length` "500", a list's items as
+// `cable.sections[0].length`, an empty list "[]". What a saved state records (RunState::configuration).
+std::map<std::string, std::string> configurationKeys(const SimulationConfig& config);
+// Throws std::invalid_argument when a saved state's configuration (not empty: recorded) differs from
+// `config`'s keys, naming the keys that differ (up to 8) with their saved and current values, then `hint`
+// (how to load it all the same).
+void requireSameConfiguration(const std::map<std::string, std::string>& saved, const SimulationConfig& config,
+                              const std::string& hint);
 
 // Reads a bathymetry grid file: YAML {origin: [x, y], spacing: [dx, dy], depth: [[row at y0], [row at y0+dy],
 // ...]}. Throws std::invalid_argument naming the file and the key.

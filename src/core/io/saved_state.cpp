@@ -2,6 +2,7 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -15,7 +16,9 @@ namespace tow_sim
 namespace
 {
 const char* const kMagic = "tow_sim_state";
-const int kFormat = 1;
+const int kFormat = 2;  // written; 1 (without the configuration) is still read
+const char* const kConfigPrefix = "config.";
+const char* const kConfigHash = "config_hash";
 
 class Writer
 {
@@ -186,6 +189,50 @@ std::vector<double> parseNumbers(std::istringstream& in, const Fields& f, int li
   }
   return values;
 }
+
+// The lines of a state's text: its numeric fields into f, the configuration's text lines apart.
+void readFields(const std::string& text, Fields& f, std::map<std::string, std::string>& configuration,
+                std::string& hash)
+{
+  std::istringstream lines(text);
+  std::string line;
+  for (int n = 1; std::getline(lines, line); ++n)
+  {
+    std::istringstream in(line);
+    std::string key;
+    if (!(in >> key) || key[0] == '#')
+      continue;
+    if (!f.has(kMagic) && key != kMagic)
+      f.fail("line " + std::to_string(n) + ": not a tow_sim state (it must begin with '" + kMagic + " " +
+             std::to_string(kFormat) + "')");
+    if (key == kConfigHash || key.rfind(kConfigPrefix, 0) == 0)  // text: the rest of the line
+    {
+      std::string value;
+      std::getline(in >> std::ws, value);
+      if (key == kConfigHash)
+        hash = value;
+      else if (!configuration.emplace(key.substr(std::string(kConfigPrefix).size()), value).second)
+        f.fail("line " + std::to_string(n) + ": " + key + " is given twice");
+      continue;
+    }
+    f.add(key, parseNumbers(in, f, n), n);
+  }
+}
+
+// The format version, and a configuration that matches its hash (format 2; none in format 1).
+void checkConfiguration(const Fields& f, long format, const std::map<std::string, std::string>& configuration,
+                        const std::string& hash)
+{
+  if (format != 1 && format != kFormat)
+    f.fail(std::string(kMagic) + ": format versions other than 1 and " + std::to_string(kFormat) + " are not read");
+  if (format == 1 && (!configuration.empty() || !hash.empty()))
+    f.fail("format 1 has no configuration lines");
+  if (configuration.empty() != hash.empty())
+    f.fail(hash.empty() ? "config_hash is missing" : "config_hash without the configuration's config. lines");
+  if (!hash.empty() && hash != configurationHash(configuration))
+    f.fail("config_hash " + hash + " does not match the config. lines (" + configurationHash(configuration) +
+           "): the file was edited or damaged");
+}
 }  // namespace
 
 std::string runStateText(const RunState& s)
@@ -217,33 +264,42 @@ std::string runStateText(const RunState& s)
   w.put("autopilot", s.autopilot ? 1.0 : 0.0);
   if (s.autopilot)
     putAutopilot(w, *s.autopilot);
-  return "# tow_sim saved state (README, Saved states): the cable, the actuators, the run's counters, the autopilot\n" +
-         w.text();
+  std::string config;
+  if (!s.configuration.empty())
+  {
+    config = std::string(kConfigHash) + " " + configurationHash(s.configuration) + "\n";
+    for (const auto& [key, value] : s.configuration)
+      config += kConfigPrefix + key + " " + value + "\n";
+  }
+  return "# tow_sim saved state (README, Saved states): the cable, the actuators, the run's counters, the autopilot, "
+         "the configuration\n" +
+         w.text() + config;
+}
+
+std::string configurationHash(const std::map<std::string, std::string>& configuration)
+{
+  std::uint64_t h = 14695981039346656037ULL;
+  for (const auto& [key, value] : configuration)
+    for (const std::string& part : { key, std::string("="), value, std::string("\n") })
+      for (unsigned char c : part)
+      {
+        h ^= c;
+        h *= 1099511628211ULL;
+      }
+  char buffer[17];
+  std::snprintf(buffer, sizeof buffer, "%016llx", static_cast<unsigned long long>(h));
+  return buffer;
 }
 
 RunState parseRunState(const std::string& text, const std::string& source)
 {
   Fields f(source);
-  std::istringstream lines(text);
-  std::string line;
-  int n = 0;
-  while (std::getline(lines, line))
-  {
-    ++n;
-    std::istringstream in(line);
-    std::string key;
-    if (!(in >> key) || key[0] == '#')
-      continue;
-    std::vector<double> values = parseNumbers(in, f, n);
-    if (!f.has(kMagic) && key != kMagic)
-      f.fail("line " + std::to_string(n) + ": not a tow_sim state (it must begin with '" + kMagic + " " +
-             std::to_string(kFormat) + "')");
-    f.add(key, std::move(values), n);
-  }
+  std::map<std::string, std::string> configuration;
+  std::string hash;
+  readFields(text, f, configuration, hash);
   if (!f.has(kMagic))
     f.fail("empty: not a tow_sim state");
-  if (f.integer(kMagic, 0, 1000000) != kFormat)
-    f.fail(std::string(kMagic) + ": format versions other than " + std::to_string(kFormat) + " are not read");
+  checkConfiguration(f, f.integer(kMagic, 0, 1000000), configuration, hash);
   RunState s;
   SimulatorState& sim = s.sim;
   sim.t = f.number("t");
@@ -275,6 +331,7 @@ RunState parseRunState(const std::string& text, const std::string& source)
   if (f.flag("autopilot"))
     s.autopilot = takeAutopilot(f);
   f.finish();
+  s.configuration = std::move(configuration);
   if (!s.tow_point.p_W.allFinite() || !s.tow_point.v_W.allFinite() || !s.tow_point.a_W.allFinite() ||
       !std::isfinite(s.heading))
     f.fail("tow_point and heading must be finite");

@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -45,9 +46,9 @@ struct InitialShape
   Eigen::Vector3d line_direction_S = Eigen::Vector3d(-1.0, 0.0, -0.5);  // ship frame (FLU), turned by the heading
   Eigen::Matrix3Xd points;                                              // joints x_2 .. x_{nu+2}, for kPoints
   std::string path;                                                     // the saved state, for kFile
+  bool any_configuration = false;  // kFile: load a state saved under another configuration (refused otherwise)
 };
 
-// Every output of the run at one instant (SI units, world ENU frame unless stated).
 // A point body on the cable (cable.bodies) in a snapshot: where it is and the cable's pull on either side.
 struct BodyOutput
 {
@@ -58,6 +59,7 @@ struct BodyOutput
   Eigen::Vector3d tension_below = Eigen::Vector3d::Zero();  // [N] T at its joint: the cable below's
 };
 
+// Every output of the run at one instant (SI units, world ENU frame unless stated).
 struct TowSnapshot
 {
   double t = 0.0;                    // [s]
@@ -125,9 +127,9 @@ double tickTarget(double now, double wanted, double available, double step, doub
                   double max_wall);
 
 // A run's saved state (saved_state.h reads and writes it as text): the simulator's, where the ship was, the
-// outputs' running maxima and counters, the attitude's held heading and the autopilot's. Not in it: the
-// model and configuration, the ship's motion, the environment and the schedule (the caller's, as the
-// scenario or the node has them).
+// outputs' running maxima and counters, the attitude's held heading and the autopilot's, and the configuration
+// it was saved under as keys and values (to refuse a state under another one). Not in it: the model, the
+// ship's motion, the environment now and the schedule (the caller's, as the scenario or the node has them).
 struct RunState
 {
   SimulatorState sim;
@@ -143,6 +145,9 @@ struct RunState
   ValueRange tension_ship_range, tension_vehicle_range;  // [N] likewise
   double attitude_heading = 0.0;                         // [rad] AttitudeHold's held yaw; NaN: none held
   std::optional<DepthAutopilotState> autopilot;
+  // The configuration's keys and values as text (configurationKeys, config.h; the caller fills it in before
+  // writing); empty: not recorded (a state of format 1, or a caller without a configuration).
+  std::map<std::string, std::string> configuration;
 };
 
 // A state carried to another time and ship pose (tow_sim_node's ~load_state): the cable's shape and
