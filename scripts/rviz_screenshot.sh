@@ -45,7 +45,9 @@ if [[ "$seconds" == markers ]]; then
   # The node publishes cable/markers once the cable is laid out (at the first ship odometry) and while
   # someone listens: wait until rviz subscribes and the markers flow (`rostopic bw` needs no message
   # class), then give rviz a moment to draw them.
+  # At most 150 s of wall time (each round may take seconds on a loaded machine), inside the test's limit.
   for _ in $(seq 60); do
+    ((SECONDS < 150)) || break
     subscribers="$(rostopic info /cable/markers 2>/dev/null || true)"
     flow="$(PYTHONUNBUFFERED=1 timeout 3 rostopic bw /cable/markers 2>/dev/null || true)"
     if [[ "$subscribers" == *"/rviz "* && "$flow" == *average* ]]; then

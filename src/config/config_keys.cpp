@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "tow_sim/config/config.h"
+#include "tow_sim/core/io/saved_state.h"
 
 namespace tow_sim
 {
@@ -59,15 +60,40 @@ std::map<std::string, std::string> configurationKeys(const SimulationConfig& con
 {
   std::map<std::string, std::string> keys;
   flatten(toYaml(config), "", keys);
+  // The bathymetry by its content, not by where its file is (the node and the batch resolve a relative
+  // grid_file against different folders; an edited grid in the same file is another seabed).
+  keys.erase("seabed.grid_file");
+  if (config.seabed.type == SeabedParams::Type::kGrid)
+  {
+    const BathymetryGrid& g = config.seabed.grid;
+    std::map<std::string, std::string> values;
+    char buffer[40];
+    for (Eigen::Index k = 0; k < g.depth.size(); ++k)
+    {
+      std::snprintf(buffer, sizeof buffer, "%.17g", g.depth.data()[k]);
+      values[std::to_string(k)] = buffer;
+    }
+    std::snprintf(buffer, sizeof buffer, "%.17g %.17g %.17g %.17g", g.origin.x(), g.origin.y(), g.spacing.x(),
+                  g.spacing.y());
+    values["origin, spacing"] = buffer;
+    keys["seabed.grid"] = std::to_string(g.depth.cols()) + " x " + std::to_string(g.depth.rows()) + " depths, FNV-1a " +
+                          configurationHash(values);
+  }
   return keys;
 }
 
 void requireSameConfiguration(const std::map<std::string, std::string>& saved, const SimulationConfig& config,
                               const std::string& hint)
 {
+  if (!saved.empty())
+    requireSameConfiguration(saved, configurationKeys(config), hint);
+}
+
+void requireSameConfiguration(const std::map<std::string, std::string>& saved,
+                              const std::map<std::string, std::string>& now, const std::string& hint)
+{
   if (saved.empty())
     return;
-  const std::map<std::string, std::string> now = configurationKeys(config);
   std::vector<std::string> differ;
   auto value = [](const std::map<std::string, std::string>& m, const std::string& key)
   {

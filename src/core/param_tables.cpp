@@ -50,7 +50,7 @@ const ParamTable<CableParams>& cableParams()
                   "winch pays out and hauls in the first section")
           .custom("bodies", "m, kg, m^3, m^2", "[]",
                   "at on a joint, in (0, length]; the rest ≥ 0; with the winch, not inside the first section; with "
-                  "breaking_load, a body and what hangs below it at rest weigh less than it in water",
+                  "breaking_load, no body's own weight in water takes what hangs from it at rest over it",
                   "[{at: m, mass: kg, displaced_volume: m³, drag_area: m², added_mass: kg}, …]: point bodies at "
                   "joints (clumps, floats), at metres along the cable from the tow point; weight less buoyancy, "
                   "drag ½ρ C_D A |u| u against the flow with drag_area C_D A, isotropic added mass");

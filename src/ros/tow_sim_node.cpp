@@ -38,8 +38,10 @@ bool guarded(const char* what, F&& f)
 }
 
 // The configuration; the adaptive implicit stepper's steps are capped at max_command_lag, since a command
-// from another node acts from the end of the step under way (implicit_fixed keeps its fixed_step).
-SimulationConfig readConfig(const ros::NodeHandle& pnh, const NodeParams& params)
+// from another node acts from the end of the step under way (implicit_fixed keeps its fixed_step). `as_loaded`
+// gets its keys before that (what a saved state records, so that the batch can load the node's states).
+SimulationConfig readConfig(const ros::NodeHandle& pnh, const NodeParams& params,
+                            std::map<std::string, std::string>& as_loaded)
 {
   try
   {
@@ -49,6 +51,7 @@ SimulationConfig readConfig(const ros::NodeHandle& pnh, const NodeParams& params
     for (const char* live : { "current_x", "current_y", "current_z", "safe_working_load", "breaking_load" })
       known.push_back(live);  // dynamic_reconfigure's own (cfg/TowSim.cfg): its server writes them here
     requireKnownKeys(parameters, pnh.getNamespace() + "/", known);
+    as_loaded = configurationKeys(config);
     if (isImplicit(config.numerics.stepper))
       config.numerics.max_step = std::min(config.numerics.max_step, params.max_command_lag);
     return config;
@@ -101,7 +104,7 @@ TowSimNode::TowSimNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     : nh_(nh),
       pnh_(pnh),
       params_(ros_conv::readPrivateParams<NodeParams>(pnh, nodeParams(), validate)),
-      config_(readConfig(pnh, params_)),
+      config_(readConfig(pnh, params_, config_keys_)),
       live_(config_, liveSettings(params_), wallNow)
 {
   live_.setNotify([this](const LiveNotice& notice) { say(notice); });

@@ -32,7 +32,7 @@ bool TowSimNode::onSaveState(tow_sim::StateFile::Request& req, tow_sim::StateFil
     try
     {
       RunState state = live_.run().saveState();
-      state.configuration = configurationKeys(config_);
+      state.configuration = config_keys_;
       writeRunState(req.path, state);
       res.success = true;
       res.message = "saved the state at t = " + timeText(stamp(live_.run().time()).toSec()) + " s to " + req.path;
@@ -61,7 +61,7 @@ bool TowSimNode::onLoadState(tow_sim::StateFile::Request& req, tow_sim::StateFil
     {
       const RunState saved = readRunState(req.path);
       if (!req.any_configuration)
-        requireSameConfiguration(saved.configuration, config_, "any_configuration: true loads it");
+        requireSameConfiguration(saved.configuration, config_keys_, "any_configuration: true loads it");
       live_.load(saved);  // refused: nothing changed
       const double t = live_.run().time();
       res.success = true;

@@ -15,6 +15,8 @@ namespace tow_sim
 {
 void payOutTo(SimulationConfig& config, double cable_out)
 {
+  if (cable_out == config.cable.length)
+    return;  // as configured
   CableParams& first = config.sections.empty() ? config.cable : config.sections.front();
   const double aft = config.cable.length - first.length, length = cable_out - aft;
   if (!(length > 0.0))
@@ -24,13 +26,14 @@ void payOutTo(SimulationConfig& config, double cable_out)
        << " m of the sections aft of the first, which stay as they are";
     throw std::invalid_argument(os.str());
   }
-  for (CableBodyParams& b : config.bodies)
+  for (size_t i = 0; i < config.bodies.size(); ++i)
   {
+    CableBodyParams& b = config.bodies[i];
     if (b.at < first.length - 1e-6)
     {
       std::ostringstream os;
-      os << "cable.bodies: the body at " << b.at << " m is inside the first section (" << first.length
-         << " m), whose length changes with the cable out; put it aft of it";
+      os << "cable.bodies[" << i << "].at = " << b.at << " m is inside the first section (" << first.length
+         << " m), whose length changes with the cable out: a chart at another cable out needs it aft of it";
       throw std::invalid_argument(os.str());
     }
     b.at += length - first.length;

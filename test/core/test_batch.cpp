@@ -78,7 +78,8 @@ const std::string& outputRoot()
 const char* const kShippedScenarios[] = {
   "report_elevator_step", "turn_180",     "speed_change",    "zigzag",
   "winch_payout",         "seabed_shoal", "sheared_current", "autopilot_depth_turn",
-  "autopilot_terrain",    "head_seas",    "autopilot_winch", "heave_snap"
+  "autopilot_terrain",    "head_seas",    "autopilot_winch", "heave_snap",
+  "two_part_tow"
 };
 
 // Runs a shipped scenario once per test process (whichever test asks first), in this process through the
@@ -160,11 +161,21 @@ const std::vector<std::string> kColumns = { "t",
                                             "snap_count",
                                             "max_strain" };
 
+// The documented columns, and five for each point body (README, "Batch runs").
+std::vector<std::string> columnsOf(const Scenario& sc)
+{
+  std::vector<std::string> columns = kColumns;
+  for (size_t i = 1; i <= sc.config.bodies.size(); ++i)
+    for (const char* column : { "_x", "_y", "_depth", "_tension_above", "_tension_below" })
+      columns.push_back("body" + std::to_string(i) + column);
+  return columns;
+}
+
 // Every cell of every row finite (blank only where documented), and each output's interval extremes
 // bracketing its tension.
 void expectRowsFinite(const std::string& name, const Scenario& sc, const std::vector<std::vector<std::string>>& rows)
 {
-  const std::vector<std::string>& columns = kColumns;
+  const std::vector<std::string> columns = columnsOf(sc);
   for (size_t r = 1; r < rows.size(); ++r)
   {
     ASSERT_EQ(rows[r].size(), columns.size()) << name << " row " << r;
@@ -201,11 +212,11 @@ void expectPlots(const std::string& name, const Scenario& sc, const std::string&
   const bool heaves = sc.config.environment.waves.type != WaveParams::Type::kNone || !sc.motion_file.empty();
   EXPECT_EQ(fileSize(out + "/waves.png") > 5000, heaves) << name;
   EXPECT_EQ(fileSize(out + "/snaps.png") > 5000, sc.config.cable.elastic()) << name;
+  EXPECT_EQ(fileSize(out + "/bodies.png") > 5000, !sc.config.bodies.empty()) << name;
 }
 
 TEST(Batch, EveryScenarioRunsAndWritesTheDocumentedColumns)
 {
-  const std::vector<std::string>& columns = kColumns;
   for (const std::string name : kShippedScenarios)
   {
     ASSERT_FALSE(outputRoot().empty()) << "cannot make a temporary folder";
@@ -216,7 +227,7 @@ TEST(Batch, EveryScenarioRunsAndWritesTheDocumentedColumns)
     const Scenario sc = loadScenarioFile(scenario);
     const auto rows = readCsv(out + "/timeseries.csv");
     ASSERT_FALSE(rows.empty());
-    EXPECT_EQ(rows[0], columns) << name;
+    EXPECT_EQ(rows[0], columnsOf(sc)) << name;
     EXPECT_EQ(rows.size(), static_cast<size_t>(std::lround(sc.duration / sc.output_interval)) + 2) << name;
     expectRowsFinite(name, sc, rows);
     // Tension is positive, the vehicle is under water, the lengths held: a step leaves a relative length
@@ -230,7 +241,10 @@ TEST(Batch, EveryScenarioRunsAndWritesTheDocumentedColumns)
       EXPECT_LT(std::stod(rows[r][20]), length_bound) << name << " row " << r;
     }
     const auto shapes = readCsv(out + "/shapes.csv");
-    EXPECT_EQ(shapes[0], (std::vector<std::string>{ "t", "joint", "x", "y", "z", "tension", "slack" }));
+    std::vector<std::string> shape_columns = { "t", "joint", "x", "y", "z", "tension", "slack" };
+    if (!sc.config.sections.empty())
+      shape_columns.push_back("section");
+    EXPECT_EQ(shapes[0], shape_columns) << name;
     if (!sc.config.winch.enabled)  // else the joint count changes
     {
       EXPECT_EQ((shapes.size() - 1) % static_cast<size_t>(sc.config.cable.segments + 2), 0u);

@@ -136,6 +136,20 @@ TEST(ConfigSections, TheChartPaysOutTheFirstSectionAndTheBodiesAftOfItMoveWithTh
   EXPECT_EQ(c.bodies[1].at, 650.0);
   EXPECT_EQ(jointBodies(c).front().joint, 30);  // still at the top of the tether
   EXPECT_THROW(payOutTo(c, 150.0), std::invalid_argument);
+  // A body inside the first section: the configured cable out is charted as it is, another is refused.
+  SimulationConfig inside = loadConfig(YAML::Load(edited("at: 400", "at: 390")));
+  EXPECT_NO_THROW(payOutTo(inside, 550.0));
+  EXPECT_EQ(inside.bodies[0].at, 390.0);
+  try
+  {
+    payOutTo(inside, 600.0);
+    ADD_FAILURE() << "accepted a body inside the first section";
+  }
+  catch (const std::invalid_argument& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("cable.bodies[0].at = 390 m is inside the first section"), std::string::npos)
+        << e.what();
+  }
   SimulationConfig uniform;
   payOutTo(uniform, 250.0);
   EXPECT_EQ(uniform.cable.length, 250.0);
@@ -188,6 +202,10 @@ TEST(ConfigSections, EachBadEntryIsRefusedByItsKey)
       << heavy;
   EXPECT_NE(heavy.find("more than /tow_sim/cable.breaking_load = 4700 N"), std::string::npos) << heavy;
   EXPECT_EQ(errorOf(edited("  diameter: 0.017", "  breaking_load: 4760\n  diameter: 0.017")), "(accepted)");
+  // A float is never the body the cable cannot carry, however heavy the rest (a cable and vehicle too heavy on
+  // their own are accepted without bodies, so with a float too).
+  EXPECT_EQ(errorOf("cable: {length: 100, segments: 10, breaking_load: 10, bodies: [{at: 50, displaced_volume: 0.1}]}"),
+            "(accepted)");
   // With the winch, a body at the first section's end is fine; so is a body at the bail of one cable.
   EXPECT_EQ(errorOf(kTwoPart + std::string("winch: {enabled: true, min_length: 300, max_length: 900}\n")),
             "(accepted)");

@@ -131,5 +131,22 @@ TEST(SavedConfiguration, RestoredUnderAnotherConfigurationItIsRefusedNamingTheKe
   EXPECT_NO_THROW(requireSameConfiguration({}, other.config, "-"));
 }
 
+// The bathymetry is compared by its content: the same grid from another folder is the same seabed, an edited
+// depth another one.
+TEST(SavedConfiguration, TheSeabedGridIsKeyedByItsContentNotItsPath)
+{
+  const Scenario sc = loadScenarioFile(std::string(TOW_SIM_SOURCE_DIR) + "/scenarios/seabed_shoal.yaml");
+  ASSERT_EQ(sc.config.seabed.type, SeabedParams::Type::kGrid);
+  const std::map<std::string, std::string> keys = configurationKeys(sc.config);
+  EXPECT_EQ(keys.count("seabed.grid_file"), 0u);
+  ASSERT_EQ(keys.count("seabed.grid"), 1u);
+  SimulationConfig moved = sc.config;
+  moved.seabed.grid_file = "/elsewhere/bathymetry_shoal.yaml";
+  EXPECT_EQ(configurationKeys(moved), keys);
+  SimulationConfig edited = sc.config;
+  edited.seabed.grid.depth(0, 0) += 1.0;
+  EXPECT_NE(configurationKeys(edited).at("seabed.grid"), keys.at("seabed.grid"));
+}
+
 }  // namespace
 }  // namespace tow_sim

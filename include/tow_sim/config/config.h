@@ -47,6 +47,9 @@ std::map<std::string, std::string> configurationKeys(const SimulationConfig& con
 // (how to load it all the same).
 void requireSameConfiguration(const std::map<std::string, std::string>& saved, const SimulationConfig& config,
                               const std::string& hint);
+// The same against keys already flattened (configurationKeys).
+void requireSameConfiguration(const std::map<std::string, std::string>& saved,
+                              const std::map<std::string, std::string>& now, const std::string& hint);
 
 // Reads a bathymetry grid file: YAML {origin: [x, y], spacing: [dx, dy], depth: [[row at y0], [row at y0+dy],
 // ...]}. Throws std::invalid_argument naming the file and the key.

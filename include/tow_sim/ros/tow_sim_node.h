@@ -17,6 +17,7 @@
 
 #include <array>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -91,6 +92,9 @@ private:
 
   ros::NodeHandle nh_, pnh_;
   NodeParams params_;
+  // The configuration's keys as loaded (before the node caps max_step or reconfigure changes the load
+  // limits): what ~save_state records and ~load_state compares. Declared before config_, which fills it.
+  std::map<std::string, std::string> config_keys_;
   SimulationConfig config_;
   LiveRun live_;             // the run, the ship's history, the pacing and the counters (core/run/live_run.h)
   TowSnapshot last_;         // the last published outputs (the status line prints them)

@@ -95,10 +95,15 @@ void checkBreakingLoad(const SimulationConfig& config, const std::string& prefix
 {
   if (!config.cable.breaking_load)
     return;
+  const double rho = config.environment.water_density, g = config.environment.gravity;
   for (size_t i = 0; i < config.bodies.size(); ++i)
   {
+    // The body's own weight must be what takes the load over: a cable and vehicle too heavy on their own
+    // are no body's fault (nor refused without bodies), and a float never is.
+    const JointBody& b = config.bodies[i].body;
+    const double own = (b.mass - rho * b.displaced_volume) * g;
     const double weight = weightInWaterBelow(config, config.bodies[i].at);
-    if (weight > *config.cable.breaking_load)
+    if (own > 0.0 && weight > *config.cable.breaking_load && weight - own <= *config.cable.breaking_load)
       throw std::invalid_argument(
           prefix + "cable.bodies[" + std::to_string(i) + "].mass = " + text(config.bodies[i].body.mass) +
           " [kg]: the cable cannot carry it: hanging at rest, the body and what hangs below it weigh " + text(weight) +
