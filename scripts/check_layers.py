@@ -25,7 +25,7 @@ LAYERS = [
     ["chain_state", "chain_solver", "chain_jacobian", "rosenbrock_tableau", "run_report", "winch"],
     ["chain", "implicit_stepper", "explicit_stepper"],
     ["simulator"],
-    ["equilibrium", "ship_track", "odometry_check", "depth_autopilot", "track_trail", "simulation_config"],
+    ["equilibrium", "ship_track", "odometry_check", "gnss_track", "depth_autopilot", "track_trail", "simulation_config"],
     ["tow_run"],
     ["saved_state", "live_run"],
 ]
