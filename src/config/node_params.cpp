@@ -166,6 +166,36 @@ ShipMotionParams readShipMotionParams(const YAML::Node& params, const std::strin
   return p;
 }
 
+const ParamTable<GnssShipParams>& gnssShipParams()
+{
+  using G = GnssShipParams;
+  static const ParamTable<G> table =
+      ParamTable<G>()
+          .boolean("origin_from_first_fix", &G::origin_from_first_fix,
+                   "the first good fix is the ENU origin (else origin_latitude, _longitude, _altitude)")
+          .number("origin_latitude", &G::origin_latitude, "deg", -90.0, 90.0, kClosed, "WGS84, north positive")
+          .number("origin_longitude", &G::origin_longitude, "deg", -180.0, 180.0, kClosed, "WGS84, east positive")
+          .number("origin_altitude", &G::origin_altitude, "m", -1e4, 1e4, kClosed, "above the WGS84 ellipsoid")
+          .vector3("antenna", &G::antenna_S, "m", -1000.0, 1000.0, "the GNSS antenna in the ship frame (FLU)")
+          .number("smoothing_time", &G::smoothing_time, "s", 0.0, 600.0, kClosed,
+                  "time constant of the alpha-beta tracker that smooths the fixes and gives the velocity (0: none)")
+          .boolean("use_altitude", &G::use_altitude, "the ship's z from the fixes' altitude (else z = 0)")
+          .choice("heading_convention", &G::heading_convention, { { "enu", "enu" }, { "compass", "compass" } },
+                  "ship/heading's yaw: enu from east toward north (REP-103), compass from north clockwise")
+          .number("max_heading_age", &G::max_heading_age, "s", 0.0, 60.0, kOpen,
+                  "a fix is used with the newest heading if their stamps are at most this far apart")
+          .text("world_frame", &G::world_frame, "non-empty", "frame of ship/odom (ENU about the origin)")
+          .text("ship_frame", &G::ship_frame, "≠ world_frame", "child frame of ship/odom and the tf")
+          .boolean("publish_tf", &G::publish_tf, "the tf world_frame -> ship_frame");
+  return table;
+}
+
+void validate(const GnssShipParams& p, const std::string& prefix)
+{
+  validateParams(gnssShipParams(), p, prefix);
+  requireDistinctFrames(p.world_frame, p.ship_frame, "ship_frame", prefix);
+}
+
 const ParamTable<ReplayParams>& replayParams()
 {
   using R = ReplayParams;

@@ -8,6 +8,7 @@
 #include "tow_sim/config/config.h"
 #include "tow_sim/core/constants.h"
 #include "tow_sim/ros/conversions.h"
+#include "tow_sim/ros/gnss_ship_node.h"
 #include "tow_sim/ros/markers.h"
 
 namespace tow_sim
@@ -216,6 +217,36 @@ TEST(Conversions, SectionsAndBodiesInCableStateAndMarkers)
   EXPECT_EQ(spheres[0]->pose.position.x, -10.0);
   EXPECT_EQ(spheres[0]->action, visualization_msgs::Marker::ADD);
   EXPECT_EQ(spheres[1]->action, visualization_msgs::Marker::DELETE);
+}
+
+// gnss_ship_node's message checks: a heading as a quaternion about z, from east (REP-103) or from north
+// clockwise (a gyrocompass's, as some GNSS drivers put it in the quaternion's yaw); a fix refused naming
+// its field.
+TEST(Conversions, GnssHeadingConventionsAndRefusedFixes)
+{
+  geometry_msgs::QuaternionStamped h;
+  const double psi = 30.0 * kPi / 180.0;  // the quaternion's yaw
+  h.quaternion.z = std::sin(psi / 2);
+  h.quaternion.w = std::cos(psi / 2);
+  EXPECT_NEAR(ros_conv::headingYaw(h, "enu"), psi, 1e-12);
+  EXPECT_NEAR(ros_conv::headingYaw(h, "compass"), 60.0 * kPi / 180.0, 1e-12);  // N30E is 60 deg from east
+  h.quaternion.z = std::sin(kPi / 4), h.quaternion.w = std::cos(kPi / 4);      // compass 90: due east
+  EXPECT_NEAR(ros_conv::headingYaw(h, "compass"), 0.0, 1e-12);
+  h.quaternion.z = std::sin(kPi / 2 + 0.1), h.quaternion.w = std::cos(kPi / 2 + 0.1);  // compass 180 + 11.5 deg
+  EXPECT_NEAR(ros_conv::headingYaw(h, "compass"), -kPi / 2 - 0.2, 1e-12);
+  h.quaternion.w = 2.0;
+  EXPECT_THROW(ros_conv::headingYaw(h, "enu"), std::invalid_argument);
+
+  sensor_msgs::NavSatFix fix;
+  fix.latitude = 43.1, fix.longitude = 5.9;
+  EXPECT_EQ(ros_conv::fixProblem(fix), "");
+  fix.status.status = sensor_msgs::NavSatStatus::STATUS_NO_FIX;
+  EXPECT_NE(ros_conv::fixProblem(fix).find("status.status = -1 (no fix)"), std::string::npos);
+  fix.status.status = sensor_msgs::NavSatStatus::STATUS_GBAS_FIX;
+  fix.longitude = 181.0;
+  EXPECT_EQ(ros_conv::fixProblem(fix), "longitude = 181 must be finite, in [-180, 180] [deg]");
+  fix.longitude = 5.9, fix.altitude = NAN;
+  EXPECT_NE(ros_conv::fixProblem(fix).find("altitude = nan"), std::string::npos);
 }
 
 }  // namespace

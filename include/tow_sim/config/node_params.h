@@ -81,6 +81,26 @@ void validate(const ShipMotionParams& params, const std::string& prefix);
 // validate(). Errors name "<name>.<key>"; keys of other readers are left alone.
 ShipMotionParams readShipMotionParams(const YAML::Node& params, const std::string& name);
 
+// gnss_ship_node: a survey vessel's GNSS (sensor_msgs/NavSatFix and a heading) as ship/odom in the
+// local ENU frame about a geodetic origin (docs/own_ship.md).
+struct GnssShipParams
+{
+  bool origin_from_first_fix = true;                    // the first good fix is the origin; else the three keys below
+  double origin_latitude = 0.0;                         // [deg] WGS84, north positive
+  double origin_longitude = 0.0;                        // [deg] WGS84, east positive
+  double origin_altitude = 0.0;                         // [m] above the WGS84 ellipsoid
+  Eigen::Vector3d antenna_S = Eigen::Vector3d::Zero();  // [m] the GNSS antenna in the ship frame (FLU)
+  double smoothing_time = 2.0;                          // [s] the tracker's time constant (0: none)
+  bool use_altitude = false;                            // the ship's z from the altitude; else z = 0
+  std::string heading_convention = "enu";  // enu: yaw from east toward north; compass: from north, clockwise
+  double max_heading_age = 2.0;            // [s] a fix needs a heading at most this much older or newer
+  std::string world_frame = "odom";
+  std::string ship_frame = "ship";
+  bool publish_tf = true;  // the tf world -> ship
+};
+const ParamTable<GnssShipParams>& gnssShipParams();
+void validate(const GnssShipParams& params, const std::string& prefix);
+
 // tow_sim_replay: a batch run's shapes replayed into rviz on its own clock.
 struct ReplayParams
 {
