@@ -115,9 +115,9 @@ offline-demo: build
 screenshot: build
 	$(REPO)/scripts/rviz_screenshot.sh $(REPO)/docs/rviz_demo.png 40 $(MANOEUVRE)
 
-# README.md's parameter tables and config/tow_sim.yaml, generated from the parameter tables.
+# docs/parameters.md's parameter tables and config/tow_sim.yaml, generated from the parameter tables.
 docs: build
-	$(WS)/devel/lib/tow_sim/tow_sim_param_docs $(REPO)/README.md $(REPO)/config/tow_sim.yaml
+	$(WS)/devel/lib/tow_sim/tow_sim_param_docs $(REPO)/docs/parameters.md $(REPO)/config/tow_sim.yaml
 
 bench: build
 	@for b in $(WS)/devel/lib/tow_sim/bench_*; do echo "== $$b"; $$b; done

@@ -4,7 +4,7 @@
 //                 [--current SPEED:DIRECTION_DEG] --out DIR [--no-plot]
 //   tow_sim_chart --config FILE.yaml --target-depth D --speed U [--current ...]    the cable out for depth D
 //   tow_sim_chart --config FILE.yaml --cable-out L --depth-band MIN:MAX [--current ...]   the speed window
-// Writes DIR/chart.csv (README, Towing charts) and, with python3-matplotlib, its PNG charts (tow_sim_plot);
+// Writes DIR/chart.csv (docs/tools.md, "Towing charts") and, with python3-matplotlib, its PNG charts (tow_sim_plot);
 // the planning forms print their answer. Exit codes: 0 done (chart points without an equilibrium are
 // marked in the CSV, not an error); 2 bad arguments or configuration; 3 the depth or band is out of reach;
 // 4 cannot write DIR.

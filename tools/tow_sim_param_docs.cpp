@@ -1,7 +1,8 @@
 // tow_sim_param_docs: writes the parameter documentation generated from the parameter tables.
-//   tow_sim_param_docs README.md config/tow_sim.yaml           rewrite both in place
-//   tow_sim_param_docs --check README.md config/tow_sim.yaml   exit 1 if either is out of date
-// README.md: each table between <!-- params:NAME --> and <!-- /params -->; config/tow_sim.yaml: the whole file.
+//   tow_sim_param_docs docs/parameters.md config/tow_sim.yaml           rewrite both in place
+//   tow_sim_param_docs --check docs/parameters.md config/tow_sim.yaml   exit 1 if either is out of date
+// The markdown file (any path; `make docs` gives docs/parameters.md): each table between <!-- params:NAME -->
+// and <!-- /params -->; config/tow_sim.yaml: the whole file.
 #include <cstdio>
 #include <cstring>
 #include <exception>
@@ -29,24 +30,24 @@ int main(int argc, char** argv)
   const bool check = argc > 1 && !std::strcmp(argv[1], "--check");
   if (argc != (check ? 4 : 3))
   {
-    std::fprintf(stderr, "usage: tow_sim_param_docs [--check] README.md config/tow_sim.yaml\n");
+    std::fprintf(stderr, "usage: tow_sim_param_docs [--check] docs/parameters.md config/tow_sim.yaml\n");
     return 2;
   }
-  const std::string readme_path = argv[check ? 2 : 1], config_path = argv[check ? 3 : 2];
+  const std::string docs_path = argv[check ? 2 : 1], config_path = argv[check ? 3 : 2];
   try
   {
-    const std::string readme = readFile(readme_path), config = readFile(config_path);
-    const std::string new_readme = tow_sim::withCurrentTables(readme), new_config = tow_sim::configFile();
+    const std::string docs = readFile(docs_path), config = readFile(config_path);
+    const std::string new_docs = tow_sim::withCurrentTables(docs), new_config = tow_sim::configFile();
     if (check)
     {
-      const bool current = readme == new_readme && config == new_config;
+      const bool current = docs == new_docs && config == new_config;
       std::printf("%s\n", current ? "parameter documentation is current"
                                   : "parameter documentation is out of date: run make docs");
       return current ? 0 : 1;
     }
-    std::ofstream(readme_path) << new_readme;
+    std::ofstream(docs_path) << new_docs;
     std::ofstream(config_path) << new_config;
-    std::printf("wrote %s and %s\n", readme_path.c_str(), config_path.c_str());
+    std::printf("wrote %s and %s\n", docs_path.c_str(), config_path.c_str());
     return 0;
   }
   catch (const std::exception& e)

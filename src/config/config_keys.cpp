@@ -1,5 +1,5 @@
 // A configuration as flat keys and values (what a saved state records) and the check that a saved state's
-// configuration is the run's (README, "Saved states").
+// configuration is the run's (docs/nodes.md, "Saved states").
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>

@@ -1,5 +1,5 @@
 // depth_autopilot_node: holds the towed vehicle's depth with the elevator and keeps it on the ship's
-// track with the rudder. Parameters, topics and signs: README.md.
+// track with the rudder. Topics and signs: docs/nodes.md; parameters: docs/parameters.md.
 #include <ros/ros.h>
 
 #include "tow_sim/ros/depth_autopilot_node.h"

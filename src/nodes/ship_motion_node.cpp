@@ -1,5 +1,5 @@
-// ship_motion_node: a scripted ship for demos and tests (tow_sim/ros/ship_motion_node.h). Parameters, topics
-// and presets: README.md.
+// ship_motion_node: a scripted ship for demos and tests (tow_sim/ros/ship_motion_node.h). Topics and
+// presets: docs/nodes.md; parameters: docs/parameters.md.
 #include <ros/ros.h>
 
 #include "tow_sim/ros/ship_motion_node.h"

@@ -1,4 +1,4 @@
-// tow_sim_node: the towing simulation. Parameters, topics and services: README.md.
+// tow_sim_node: the towing simulation. Topics and services: docs/nodes.md; parameters: docs/parameters.md.
 #include <ros/ros.h>
 
 #include "tow_sim/ros/tow_sim_node.h"

@@ -1,5 +1,5 @@
 // tow_sim_replay: a tow_sim_batch run's cable shapes replayed into rviz on the run's own /clock.
-// Parameters and topics: README.md.
+// Topics: docs/tools.md ("Replay in rviz"); parameters: docs/parameters.md.
 #include <ros/ros.h>
 
 #include "tow_sim/ros/replay_node.h"

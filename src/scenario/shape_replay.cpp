@@ -10,7 +10,7 @@ namespace tow_sim
 {
 namespace
 {
-// A run with cable sections writes an eighth column, `section` (README, "Batch runs").
+// A run with cable sections writes an eighth column, `section` (docs/tools.md, "Output files").
 bool hasSectionColumn(const std::string& path)
 {
   std::ifstream in(path);

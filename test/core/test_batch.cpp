@@ -127,7 +127,7 @@ std::vector<std::vector<std::string>> timeseries(const std::string& name)
   return readCsv(path);
 }
 
-// timeseries.csv's columns, as the README documents them.
+// timeseries.csv's columns, as docs/tools.md ("Output files") documents them.
 const std::vector<std::string> kColumns = { "t",
                                             "ship_x",
                                             "ship_y",
@@ -161,7 +161,7 @@ const std::vector<std::string> kColumns = { "t",
                                             "snap_count",
                                             "max_strain" };
 
-// The documented columns, and five for each point body (README, "Batch runs").
+// The documented columns, and five for each point body (docs/tools.md, "Output files").
 std::vector<std::string> columnsOf(const Scenario& sc)
 {
   std::vector<std::string> columns = kColumns;

@@ -79,7 +79,7 @@ double scaledDifference(const std::map<std::string, std::vector<double>>& a,
 // depth, layback and diversion converge like 1/EA (within 0.1 % at EA 1e7 N, 10 times closer per decade
 // until the integration's tolerance, 1e-8 m, is reached); the tensions at the ship and the vehicle within
 // 0.1 % at 1e7 N. A stiffer cable's tension is EA/d times its stretch, so its accuracy is the position
-// tolerance's times EA/d (README): within 0.2 % at 1e8 and 1e9 N here.
+// tolerance's times EA/d (docs/limitations.md): within 0.2 % at 1e8 and 1e9 N here.
 TEST(ElasticCable, ConvergesToTheRigidChainAsEAGrows)
 {
   const auto rigid = turnSeries(std::nullopt);

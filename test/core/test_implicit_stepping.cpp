@@ -238,7 +238,7 @@ TEST(ImplicitStepping, Ros34pw2FixedStepsConvergeAtThirdOrder)
 }
 
 // L-stability where the explicit steppers would need h < 0.01 s: nu = 1000 at 2 m/s with 0.5 s steps
-// through the report's elevator step (README, Numerics, for the limits of large fixed steps in turns).
+// through the report's elevator step (docs/parameters.md, "numerics", for the limits of large fixed steps in turns).
 TEST(ImplicitStepping, AFineCableWithHalfSecondStepsStaysBoundedAndKeepsItsLengths)
 {
   Scenario sc = shipped("report_elevator_step");

@@ -1,5 +1,5 @@
-// The parameter tables drive the documentation: README.md's key tables and config/tow_sim.yaml are what the
-// tables say now (else: make docs), and every documented key reads back into the struct it describes.
+// The parameter tables drive the documentation: docs/parameters.md's key tables and config/tow_sim.yaml are
+// what the tables say now (else: make docs), and every documented key reads back into the struct it describes.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -22,13 +22,14 @@ std::string readFile(const std::string& path)
   return ss.str();
 }
 
-TEST(Docs, ReadmeTablesAndTheConfigFileAreCurrent)
+TEST(Docs, ParameterTablesAndTheConfigFileAreCurrent)
 {
-  const std::string readme = readFile(std::string(TOW_SIM_SOURCE_DIR) + "/README.md");
-  ASSERT_FALSE(readme.empty());
+  const std::string docs = readFile(std::string(TOW_SIM_SOURCE_DIR) + "/docs/parameters.md");
+  ASSERT_FALSE(docs.empty());
   for (const std::string& name : documentedTables())
-    EXPECT_NE(readme.find("<!-- params:" + name + " -->"), std::string::npos) << name << " is not in README.md";
-  EXPECT_TRUE(readme == withCurrentTables(readme)) << "README.md's parameter tables are out of date: run make docs";
+    EXPECT_NE(docs.find("<!-- params:" + name + " -->"), std::string::npos) << name << " is not in docs/parameters.md";
+  EXPECT_TRUE(docs == withCurrentTables(docs))
+      << "docs/parameters.md's parameter tables are out of date: run make docs";
   EXPECT_TRUE(readFile(std::string(TOW_SIM_SOURCE_DIR) + "/config/tow_sim.yaml") == configFile())
       << "config/tow_sim.yaml is out of date: run make docs";
 }

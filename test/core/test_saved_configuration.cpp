@@ -1,4 +1,4 @@
-// Saved states know their configuration (README, "Saved states"): a state carries the keys and values of the
+// Saved states know their configuration (docs/nodes.md, "Saved states"): a state carries the keys and values of the
 // configuration it was saved under and their hash; restored under another configuration it is refused naming
 // the keys that differ with both values, unless asked for (initial_state.any_configuration); an edited
 // configuration line no longer matches the hash; a state of format 1 (no configuration) is read as before.

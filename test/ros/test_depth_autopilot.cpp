@@ -32,7 +32,7 @@ namespace
 {
 constexpr double kSpeed = 2.0;          // [m/s] ship
 constexpr double kTurnRadius = 400.0;   // [m]
-constexpr double kSettlingTime = 60.0;  // [s] documented in README.md: within 1 m of a 20 m step
+constexpr double kSettlingTime = 60.0;  // [s] documented in docs/nodes.md: within 1 m of a 20 m step
 constexpr double kTolerance = 1.0;      // [m]
 
 class Loop
@@ -269,9 +269,9 @@ TEST(DepthAutopilotNode, ReachesAStepSetpointAndHoldsItThroughA180DegreeTurn)
 // default vehicle at 2 m/s. A setpoint 20 m deeper: the autopilot asks tow_sim_node's ~plan_cable_out for
 // the steady cable out there (its feed-forward) and pays out (winch/command) with the elevator centred.
 // The test asks the same service itself: the vehicle must settle within 1 m of the setpoint in
-// kWinchSettlingTime (without the feed-forward the integral alone needs far longer: see README.md) and
+// kWinchSettlingTime (without the feed-forward the integral alone needs far longer: see docs/nodes.md) and
 // stay there over the last 100 s of the 500 s, with the cable out then within 1 % of the plan.
-constexpr double kWinchSettlingTime = 150.0;  // [s] documented in README.md
+constexpr double kWinchSettlingTime = 150.0;  // [s] documented in docs/nodes.md
 TEST(DepthAutopilotNode, TheWinchReachesADeeperSetpointWithTheElevatorCentred)
 {
   double payout = 0.0, cable_out = 0.0;
@@ -373,7 +373,7 @@ TEST(DepthAutopilotNode, BadParameterExitsNamingIt)
 
 }  // namespace
 
-// `rosrun dynamic_reconfigure dynparam ARGS` (as README.md documents it), its output; the clock goes on
+// `rosrun dynamic_reconfigure dynparam ARGS` (as docs/nodes.md documents it), its output; the clock goes on
 // meanwhile (dynparam waits on it with use_sim_time).
 std::string dynparam(const std::string& args)
 {

@@ -1,7 +1,7 @@
 // Parameter tables: each key of a parameter struct described once (its path, the member it sets, its unit,
 // its range, its default, which is the struct's own, and a one-line meaning). A table drives the
 // validation of the struct (validateParams, here), reading it from YAML and the ROS parameter server and
-// writing it back (tow_sim_config), and the parameter tables of README.md and config/tow_sim.yaml
+// writing it back (tow_sim_config), and the parameter tables of docs/parameters.md and config/tow_sim.yaml
 // (tow_sim_param_docs writes them; a test checks they are current).
 #pragma once
 

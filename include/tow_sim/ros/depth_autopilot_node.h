@@ -1,7 +1,7 @@
 // The ROS adapter around the core DepthAutopilot: vehicle/odom, ship/odom and autopilot/depth_setpoint in;
 // fins/command out at ~rate, and winch/command when ~actuator is winch or both (the cable out from
 // cable/state, the feed-forward from tow_sim_node's ~plan_cable_out). Parameters, topics and signs:
-// README.md ("depth_autopilot_node").
+// docs/nodes.md ("depth_autopilot_node").
 #pragma once
 
 #include <dynamic_reconfigure/server.h>

@@ -1,6 +1,6 @@
 // tow_sim_replay: a tow_sim_batch run's cable shapes (shapes.csv) replayed into rviz as cable/markers on
 // the run's own /clock (set use_sim_time), to review offline studies in 3D. Parameters and topics:
-// README.md ("tow_sim_replay").
+// docs/tools.md ("Replay in rviz").
 #pragma once
 
 #include <ros/ros.h>

@@ -15,7 +15,7 @@
 namespace tow_sim
 {
 // The columns of timeseries.csv (five more for each of `bodies` point bodies) and of shapes.csv (a `section`
-// column with cable sections) (README, "Batch runs").
+// column with cable sections) (docs/tools.md, "Output files").
 std::string timeseriesHeader(size_t bodies = 0);
 std::string shapesHeader(bool sections = false);
 // One row of timeseries.csv for a snapshot (no line break); blank cells as documented.

@@ -1,4 +1,4 @@
-// The parameter documentation, generated from the parameter tables: the key tables of README.md (between
+// The parameter documentation, generated from the parameter tables: the key tables of docs/parameters.md (between
 // <!-- params:NAME --> and <!-- /params --> markers) and the whole of config/tow_sim.yaml. tow_sim_param_docs
 // writes them (`make docs`); Docs.* tests that the files in the repository are current. (Library
 // tow_sim_scenario, which sees every table.)

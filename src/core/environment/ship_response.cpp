@@ -13,7 +13,7 @@ namespace tow_sim
 namespace
 {
 
-// The generic vessel (README, The ship in waves).
+// The generic vessel (docs/tools.md, "The ship in waves").
 constexpr double kLength = 60.0, kBeam = 12.0;              // [m]
 constexpr double kHeavePeriod = 6.0, kHeaveDamping = 0.25;  // [s], [-]
 constexpr double kPitchPeriod = 5.5, kPitchDamping = 0.25;  // [s], [-]

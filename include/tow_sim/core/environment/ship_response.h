@@ -37,7 +37,7 @@ public:
 
   // The documented default: a generic 60 m vessel (60 m long, 12 m beam) that follows the wave surface
   // averaged over its waterplane in long waves, with one-degree-of-freedom resonances in heave (6 s,
-  // damping ratio 0.25), pitch (5.5 s, 0.25) and roll (10 s, 0.1). See the README.
+  // damping ratio 0.25), pitch (5.5 s, 0.25) and roll (10 s, 0.1). See docs/tools.md ("The ship in waves").
   static RaoTable genericVessel(double gravity = 9.81);
 
   // A CSV file: a header line, then rows `frequency, direction, heave_amplitude, heave_phase,

@@ -1,6 +1,6 @@
 // A run's saved state as a text file (tow_sim_node's ~save_state and ~load_state, the batch's save_state
 // and initial_state: {type: file}): one line per field, `key value ...`, the numbers with 17 significant
-// digits so that reading gives the very same doubles back. README, "Saved states".
+// digits so that reading gives the very same doubles back. docs/nodes.md, "Saved states".
 #pragma once
 
 #include <map>
