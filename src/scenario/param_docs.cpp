@@ -253,6 +253,7 @@ const std::map<std::string, std::function<std::string()>>& tables()
     { "autopilot_node", [] { return markdown(autopilotNodeParams(), AutopilotNodeParams()); } },
     { "replay_node", [] { return markdown(replayParams(), ReplayParams()); } },
     { "ship_motion_node", [] { return markdown(shipMotionParams(), ShipMotionParams()); } },
+    { "gnss_ship_node", [] { return markdown(gnssShipParams(), GnssShipParams()); } },
     { "ship", [] { return markdown(shipParams(), Scenario()); } },
     { "manoeuvres", [] { return markdown(manoeuvreParams(), Manoeuvre()); } },
     { "commands", [] { return markdown(commandParams(), CommandEvent()); } },

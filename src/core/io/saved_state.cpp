@@ -271,7 +271,8 @@ std::string runStateText(const RunState& s)
     for (const auto& [key, value] : s.configuration)
       config += kConfigPrefix + key + " " + value + "\n";
   }
-  return "# tow_sim saved state (README, Saved states): the cable, the actuators, the run's counters, the autopilot, "
+  return "# tow_sim saved state (docs/nodes.md, Saved states): the cable, the actuators, the run's counters, the "
+         "autopilot, "
          "the configuration\n" +
          w.text() + config;
 }
