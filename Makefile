@@ -4,8 +4,10 @@ SHELL := /bin/bash
 .SHELLFLAGS := -e -o pipefail -c
 REPO := $(abspath $(dir $(lastword $(MAKEFILE_LIST))))
 # The workspace sits beside the repository (a workspace inside it would contain a link to itself,
-# which rosrun cannot search).
-WS ?= $(abspath $(REPO)/../tow_sim_ws)
+# which rosrun cannot search). In an existing catkin workspace (the repository cloned as WS/src/tow_sim)
+# it is that workspace: a second one would link the same package into it, and catkin would see two.
+ENCLOSING_WS := $(shell { [ -f "$(REPO)/../../.catkin_workspace" ] || readlink "$(REPO)/../CMakeLists.txt" 2>/dev/null | grep -q toplevel.cmake; } && cd "$(REPO)/../.." && pwd)
+WS ?= $(or $(ENCLOSING_WS),$(abspath $(REPO)/../tow_sim_ws))
 # catkin and rostest need Debian's python3, not another one earlier on PATH.
 export PATH := /usr/bin:/bin:$(PATH)
 CATKIN_ARGS := -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3
@@ -31,7 +33,7 @@ deps:
 
 workspace:
 	@mkdir -p $(WS)/src
-	@ln -sfn $(REPO) $(WS)/src/tow_sim
+	@[ "$$(realpath -m $(WS)/src/tow_sim)" = "$(REPO)" ] || ln -sfn $(REPO) $(WS)/src/tow_sim
 
 build: deps workspace
 	cd $(WS) && catkin_make $(CATKIN_ARGS) -j$(JOBS)

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # `make test`: every stage runs even when an earlier one failed (the size, layer and format checks, the test build,
-# run_tests, the sanitizers, fuzzing), its exit status is recorded, and
+# run_tests, the install space, the sanitizers, fuzzing), its exit status is recorded, and
 # scripts/test_summary.py gives the verdict over all of them (the expected results of every suite
 # included, so a test that never ran is a failure). Called by the Makefile with WS, REPO, JOBS,
 # CATKIN_ARGS and FUZZ_SECONDS in the environment.
@@ -41,6 +41,8 @@ stage "catkin_make run_tests" run_tests
 # The figures the tests print, for the log.
 grep -E '^(\[  (PASSED|FAILED) |\[==========\] [0-9]+ tests? from .* ran)|critical angle|energy drift|mode [0-9]:|length error|trim at|after 60 s|yawed|pitched|incidence|CB [0-9]|equilibrium|rviz screenshot|drift from|reversing|odometry at|soak|cable/state|late step|unstable node|slope' \
   "$WS/run_tests.log" || true
+# The install space alone: catkin_make install, then the tools and the demo from install/setup.bash only.
+stage "install space (scripts/check_install.sh)" bash -c "cd '$WS' && catkin_make $CATKIN_ARGS -j$JOBS install > '$WS/install.log' 2>&1 && '$REPO/scripts/check_install.sh' '$WS/install'"
 stage "make sanitize" make --no-print-directory -C "$REPO" sanitize
 suites=(--suite "gtest/rostest" "$WS/build/test_results" "$WS/build/tow_sim/tow_sim_expected_results.txt"
         --suite "core tests under ASan+UBSan" "$WS/sanitize/test_results" "$WS/sanitize/tow_sim_expected_results.txt")

@@ -9,6 +9,7 @@
 // marked in the CSV, not an error); 2 bad arguments or configuration; 3 the depth or band is out of reach;
 // 4 cannot write DIR.
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -99,12 +100,28 @@ Eigen::Vector3d currentFrom(const std::string& text)
   return speed * Eigen::Vector3d(std::cos(direction), std::sin(direction), 0.0);
 }
 
-// Draws the charts with tow_sim_plot (the source tree's) when it is there.
+// tow_sim_plot beside this program (the install space's), else the source tree's; "" if neither is there.
+std::string plotScript()
+{
+  struct stat st;
+  char self[4096];
+  const ssize_t n = readlink("/proc/self/exe", self, sizeof(self) - 1);
+  if (n > 0)
+  {
+    std::string beside(self, static_cast<size_t>(n));
+    beside = beside.substr(0, beside.rfind('/') + 1) + "tow_sim_plot";
+    if (stat(beside.c_str(), &st) == 0)
+      return beside;
+  }
+  const std::string source = TOW_SIM_PLOT_SCRIPT;
+  return !source.empty() && stat(source.c_str(), &st) == 0 ? source : "";
+}
+
+// Draws the charts with tow_sim_plot when it is there.
 void plotChart(const std::string& out_dir)
 {
-  const std::string script = TOW_SIM_PLOT_SCRIPT;
-  struct stat st;
-  if (script.empty() || stat(script.c_str(), &st) != 0)
+  const std::string script = plotScript();
+  if (script.empty())
   {
     std::printf("tow_sim_chart: draw the charts with tow_sim_plot %s\n", out_dir.c_str());
     return;
