@@ -272,8 +272,7 @@ std::string runStateText(const RunState& s)
       config += kConfigPrefix + key + " " + value + "\n";
   }
   return "# tow_sim saved state (docs/nodes.md, Saved states): the cable, the actuators, the run's counters, the "
-         "autopilot, "
-         "the configuration\n" +
+         "autopilot, the configuration\n" +
          w.text() + config;
 }
 
