@@ -296,7 +296,11 @@ TEST(Sweep, RefusesMalformedSweepFilesByName)
   const std::string dir = tempFolder();
   ASSERT_FALSE(dir.empty());
   const std::pair<const char*, const char*> cases[] = {
-    { "scenario: {}\ngrid: {cable.length: [1.0]}\nrandm: {}\n", "unknown key 'randm'" },
+    { "scenario: {}\ngrid: {cable.length: [1.0]}\nrandm: {}\n", "unknown key 'randm'; did you mean 'random'?" },
+    { "scenario: {}\nrandom: {samples: 2, sed: 1, axes: {cable.length: {uniform: [1, 2]}}}\n",
+      "random: unknown key 'sed'; did you mean 'seed'?" },
+    { "scenario: {}\nrandom: {samples: 2, cable.length: {uniform: [1, 2]}}\n",
+      "random: unknown key 'cable.length' (known: axes, samples, seed)" },  // the axes belong one level down
     { "scenario: {}\n", "give one of 'grid'" },
     { "grid: {cable.length: [1.0]}\n", "give one of 'base'" },
     { "scenario: {}\ngrid: {cable..length: [1.0]}\n", "axis 'cable..length'" },
