@@ -5,16 +5,17 @@
 // simulation.save_state_at. Exit codes: 0 done; 2 bad arguments,
 // scenario or saved initial state; 3 the run diverged (the CSV files then hold the run up to the last good
 // output and the error says so); 4 cannot write DIR.
-#include <sys/stat.h>
 
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <filesystem>
 #include <fstream>
 #include <stdexcept>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include "tow_sim/core/io/saved_state.h"
@@ -155,7 +156,8 @@ int main(int argc, char** argv)
     std::fprintf(stderr, "tow_sim_batch: bad scenario %s: %s\n", scenario_path.c_str(), e.what());
     return 2;
   }
-  ::mkdir(out_dir.c_str(), 0755);
+  std::error_code made;  // with its parents (out/run); a failure shows as the files not opening
+  std::filesystem::create_directories(out_dir, made);
   std::ofstream series(out_dir + "/timeseries.csv"), shapes(out_dir + "/shapes.csv"),
       resolved(out_dir + "/scenario.yaml");
   if (!series || !shapes || !resolved)

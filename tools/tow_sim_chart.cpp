@@ -16,8 +16,10 @@
 #include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <filesystem>
 #include <fstream>
 #include <string>
+#include <system_error>
 
 #include "tow_sim/core/constants.h"
 #include "tow_sim/scenario/towing_chart.h"
@@ -211,7 +213,8 @@ int main(int argc, char** argv)
   {
     return usage(e.what());
   }
-  mkdir(o.out_dir.c_str(), 0755);
+  std::error_code made;  // with its parents (out/chart); a failure shows as the file not opening
+  std::filesystem::create_directories(o.out_dir, made);
   const std::string csv = o.out_dir + "/chart.csv";
   std::ofstream out(csv);
   if (!out)
