@@ -1,17 +1,20 @@
 #!/usr/bin/env python3
 """Runs a walk-through's commands as the document writes them, so that it cannot go stale.
 
-    run_walkthrough.py DOC.md WORKSPACE
+    run_walkthrough.py DOC.md WORKSPACE [--cwd DIR]
 
 Each ```bash block preceded by a marker comment runs, in order, in one scratch HOME:
 
     <!-- walkthrough: background -->   a terminal left running (roslaunch, rosbag play)
     <!-- walkthrough: run SECONDS -->  a command that must exit 0 within SECONDS
 
-Blocks without a marker are shown to the reader only. The workspace's devel/setup.bash is sourced first
-(as the document asks the reader to), ROS_MASTER_URI gets a free port of its own (roslaunch starts the
-master there) and DISPLAY is unset (rviz, if started, fails alone: it is not required). The background
-terminals are stopped with SIGINT at the end, as Ctrl-C would. Exit status 0 if every run block passed.
+Blocks without a marker are shown to the reader only. The blocks run in DIR (default: the scratch HOME;
+the README's commands run in the repository). The workspace's devel/setup.bash is sourced first (as the
+document asks the reader to), ROS_MASTER_URI gets a free port of its own (roslaunch starts the master
+there; after a background terminal the next block waits, up to 60 s, until the master answers, as a
+reader waits for roslaunch) and DISPLAY is unset (rviz, if started, fails alone: it is not required).
+The background terminals are stopped with SIGINT at the end, as Ctrl-C would. Exit status 0 if every run
+block passed.
 """
 import os
 import re
@@ -37,6 +40,17 @@ def free_port():
         return s.getsockname()[1]
 
 
+def wait_for_master(port, seconds=60.0):
+    """Until something listens on the master's port (roslaunch starting it), or `seconds` have passed."""
+    deadline = time.time() + seconds
+    while time.time() < deadline:
+        try:
+            with socket.create_connection(("localhost", port), timeout=1.0):
+                return
+        except OSError:
+            time.sleep(0.5)
+
+
 def stop(process):
     """Ctrl-C to the terminal's process group, then SIGKILL if it has not ended within 20 s."""
     if process.poll() is not None:
@@ -50,18 +64,24 @@ def stop(process):
 
 
 def main():
-    if len(sys.argv) != 3:
+    args = sys.argv[1:]
+    cwd = None
+    if len(args) == 4 and args[2] == "--cwd":
+        cwd = os.path.abspath(args[3])
+        args = args[:2]
+    if len(args) != 2:
         sys.exit(__doc__)
-    doc, workspace = sys.argv[1], os.path.abspath(sys.argv[2])
+    doc, workspace = args[0], os.path.abspath(args[1])
     with open(doc) as f:
         steps = blocks(f.read())
     if not steps:
         sys.exit(f"{doc}: no <!-- walkthrough: ... --> blocks")
     home = tempfile.mkdtemp(prefix="tow_sim_walkthrough_")
-    env = dict(os.environ, HOME=home, ROS_MASTER_URI=f"http://localhost:{free_port()}",
+    port = free_port()
+    env = dict(os.environ, HOME=home, ROS_MASTER_URI=f"http://localhost:{port}",
                PATH="/usr/bin:/bin:" + os.environ.get("PATH", ""), ROS_HOME=os.path.join(home, ".ros"))
     env.pop("DISPLAY", None)
-    prologue = f"set -e\nsource {workspace}/devel/setup.bash\ncd \"$HOME\"\n"
+    prologue = f"set -e\nsource {workspace}/devel/setup.bash\ncd \"{cwd or home}\"\n"
     terminals, failed = [], 0
     try:
         for i, (kind, timeout, script) in enumerate(steps, 1):
@@ -72,6 +92,7 @@ def main():
             if kind == "background":
                 terminals.append(p)
                 time.sleep(2.0)  # as a reader would open the next terminal
+                wait_for_master(port)
                 continue
             try:
                 code = p.wait(timeout=timeout)
