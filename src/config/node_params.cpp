@@ -68,6 +68,14 @@ const ParamTable<NodeParams>& nodeParams()
           .number("ship_length", &N::ship_length, "m", 0.0, 1000.0, kOpen,
                   "drawn ship hull outline, centred on the odometry's reference point")
           .number("ship_beam", &N::ship_beam, "m", 0.0, 200.0, kOpen, "drawn ship hull width")
+          .number("vehicle_marker_scale", &N::vehicle_marker_scale, "-", 1.0, 1000.0, kClosed,
+                  "the vehicle's markers drawn this many times their size about its centre, half transparent "
+                  "above 1 (a 2 m towfish is a few pixels in a view of the whole tow); its label says so")
+          .number("label_height", &N::label_height, "m", 0.0, 1000.0, kOpen,
+                  "text height of the ship's tension label (the vehicle's: half of it)")
+          .text("view_frame", &N::view_frame, "a frame name or empty",
+                "tf child frame of world_frame midway between the tow point and the vehicle, world-aligned: "
+                "rviz's default view of the whole tow follows it (empty: not published)")
           .number("trail_duration", &N::trail_duration, "s", 0.0, 86400.0, kClosed,
                   "drawn tracks of the ship and the vehicle over this time (0: none)")
           .boolean("print_status", &N::print_status, "a status line each second (the launch file sets it)");
@@ -78,6 +86,9 @@ void validate(const NodeParams& p, const std::string& prefix)
 {
   validateParams(nodeParams(), p, prefix);
   requireDistinctFrames(p.world_frame, p.vehicle_frame, "vehicle_frame", prefix);
+  if (!p.view_frame.empty() && (p.view_frame == p.world_frame || p.view_frame == p.vehicle_frame))
+    throw std::invalid_argument(prefix + "view_frame = '" + p.view_frame +
+                                "' must differ from world_frame and vehicle_frame (or be empty: none)");
 }
 
 const ParamTable<AutopilotNodeParams>& autopilotNodeParams()
@@ -207,7 +218,10 @@ const ParamTable<ReplayParams>& replayParams()
           .boolean("loop", &R::loop, "start again after the last shape (else hold it)")
           .text("world_frame", &R::world_frame, "non-empty", "frame of the markers")
           .text("vehicle_frame", &R::vehicle_frame, "≠ world_frame",
-                "tf child frame at the vehicle's element (bail to tail midpoint, x forward): rviz's view follows it")
+                "tf child frame at the vehicle's element (bail to tail midpoint, x forward): the close-up view's")
+          .text("view_frame", &R::view_frame, "a frame name or empty",
+                "tf child frame midway between the tow point and the vehicle, world-aligned: the view of the whole "
+                "tow follows it (empty: not published)")
           .number("tension_color_max", &R::tension_color_max, "N", 0.0, 1e9, kOpen, "red end of the colour scale")
           .number("cable_marker_width", &R::cable_marker_width, "m", 0.0, 100.0, kOpen, "drawn cable width");
   return table;

@@ -193,6 +193,17 @@ geometry_msgs::TransformStamped toVehicleTransform(const TowSnapshot& s, const s
   return tf;
 }
 
+geometry_msgs::TransformStamped toViewTransform(const TowSnapshot& s, const std_msgs::Header& header,
+                                                const std::string& child_frame)
+{
+  geometry_msgs::TransformStamped tf;
+  tf.header = header;
+  tf.child_frame_id = child_frame;
+  tf.transform.translation = toVector3(0.5 * (s.tow_point.p_W + s.vehicle.p_cg_W));
+  tf.transform.rotation.w = 1.0;  // world-aligned: a view that follows it does not swing with the ship
+  return tf;
+}
+
 sensor_msgs::JointState toJointState(const TowSnapshot& s, const std_msgs::Header& header,
                                      const std::string& vehicle_frame)
 {

@@ -121,46 +121,52 @@ visualization_msgs::Marker shipSideMarker(const TowSnapshot& s, const NodeParams
   return m;
 }
 
-// Hull (an ellipsoid from the nose to the tail point) and four fins at their actual deflections.
+// Hull (an orange ellipsoid from the nose to the tail point) and four fins at their actual deflections, drawn
+// vehicle_marker_scale times their size about the hull's centre (half transparent when enlarged).
 void addVehicle(const TowSnapshot& s, const VehicleParams& vp, const NodeParams& params, const std_msgs::Header& header,
                 visualization_msgs::MarkerArray& array)
 {
   using visualization_msgs::Marker;
+  const double k = params.vehicle_marker_scale, alpha = k > 1.0 ? 0.5 : 1.0;
   const Eigen::Vector3d bail = s.joints.col(s.segments), tail = s.joints.col(s.segments + 1);
+  const Eigen::Vector3d centre =
+      bail + 0.5 * (vp.tail_from_bail - vp.nose_from_bail) / vp.tail_from_bail * (tail - bail);
   auto pointAt = [&](double from_bail) -> Eigen::Vector3d
-  { return bail + from_bail / vp.tail_from_bail * (tail - bail); };
-  const double hull_length = vp.nose_from_bail + vp.tail_from_bail;
+  { return centre + k * (bail + from_bail / vp.tail_from_bail * (tail - bail) - centre); };
+  const double hull_length = vp.nose_from_bail + vp.tail_from_bail, diameter = k * params.vehicle_diameter;
   Marker hull = baseMarker(header, "vehicle", 0, Marker::SPHERE);
-  hull.pose.position = ros_conv::toPoint(pointAt(0.5 * (vp.tail_from_bail - vp.nose_from_bail)));
+  hull.pose.position = ros_conv::toPoint(centre);
   hull.pose.orientation = ros_conv::toQuaternion(s.attitude);
-  hull.scale.x = hull_length;
-  hull.scale.y = hull.scale.z = params.vehicle_diameter;
-  hull.color = grey(0.85);
+  hull.scale.x = k * hull_length;
+  hull.scale.y = hull.scale.z = diameter;
+  hull.color.r = 1.0;  // a towfish's orange: apart from the cable's blue-green-red scale at any tension below 3/4
+  hull.color.g = 0.5;
+  hull.color.a = alpha;
   array.markers.push_back(hull);
 
-  const double span = 0.8 * params.vehicle_diameter, chord = 0.12 * hull_length;
+  const double span = 0.8 * diameter, chord = 0.12 * k * hull_length;
   const Eigen::Matrix3d R = s.attitude.toRotationMatrix();
   auto fin = [&](int id, double from_bail, const Eigen::Vector3d& side_B, const Eigen::Quaterniond& deflection,
                  const Eigen::Vector3d& size)
   {
     Marker m = baseMarker(header, "vehicle", id, Marker::CUBE);
-    m.pose.position =
-        ros_conv::toPoint(pointAt(from_bail) + R * ((0.5 * params.vehicle_diameter + 0.5 * span) * side_B));
+    m.pose.position = ros_conv::toPoint(pointAt(from_bail) + R * ((0.5 * diameter + 0.5 * span) * side_B));
     m.pose.orientation = ros_conv::toQuaternion(s.attitude * deflection);
     m.scale.x = size.x();
     m.scale.y = size.y();
     m.scale.z = size.z();
-    m.color.r = 1.0;
-    m.color.g = 0.55;
+    m.color = grey(0.35);
+    m.color.a = alpha;
     array.markers.push_back(m);
   };
   // Positive rudder turns the leading edge to port (about +z_b); positive elevator lifts it (about -y_b).
   const Eigen::Quaterniond rudder(Eigen::AngleAxisd(s.vehicle.rudder, Eigen::Vector3d::UnitZ()));
   const Eigen::Quaterniond elevator(Eigen::AngleAxisd(-s.vehicle.elevator, Eigen::Vector3d::UnitY()));
-  fin(1, vp.vertical_fin_from_bail, Eigen::Vector3d::UnitZ(), rudder, Eigen::Vector3d(chord, 0.02, span));
-  fin(2, vp.vertical_fin_from_bail, -Eigen::Vector3d::UnitZ(), rudder, Eigen::Vector3d(chord, 0.02, span));
-  fin(3, vp.horizontal_fin_from_bail, Eigen::Vector3d::UnitY(), elevator, Eigen::Vector3d(chord, span, 0.02));
-  fin(4, vp.horizontal_fin_from_bail, -Eigen::Vector3d::UnitY(), elevator, Eigen::Vector3d(chord, span, 0.02));
+  const double thickness = 0.02 * k;
+  fin(1, vp.vertical_fin_from_bail, Eigen::Vector3d::UnitZ(), rudder, Eigen::Vector3d(chord, thickness, span));
+  fin(2, vp.vertical_fin_from_bail, -Eigen::Vector3d::UnitZ(), rudder, Eigen::Vector3d(chord, thickness, span));
+  fin(3, vp.horizontal_fin_from_bail, Eigen::Vector3d::UnitY(), elevator, Eigen::Vector3d(chord, span, thickness));
+  fin(4, vp.horizontal_fin_from_bail, -Eigen::Vector3d::UnitY(), elevator, Eigen::Vector3d(chord, span, thickness));
 }
 
 // The cable's pull on the ship, -T_1, drawn from the tow point, and the tension labels.
@@ -180,19 +186,24 @@ void addForceAndLabels(const TowSnapshot& s, const NodeParams& params, const std
   arrow.color.b = 0.2;
   array.markers.push_back(arrow);
 
-  char text[96];
+  char text[128];
+  const double h = params.label_height, k = params.vehicle_marker_scale;
   Marker ship_label = baseMarker(header, "labels", 0, Marker::TEXT_VIEW_FACING);
   std::snprintf(text, sizeof(text), "T ship %.0f N", s.tension_ship);
   ship_label.text = text;
-  ship_label.pose.position = ros_conv::toPoint(tow_point + Eigen::Vector3d(0.0, 0.0, 6.0));
-  ship_label.scale.z = 3.0;
+  ship_label.pose.position = ros_conv::toPoint(tow_point + Eigen::Vector3d(0.0, 0.0, 3.0 + 1.5 * h));
+  ship_label.scale.z = h;
   ship_label.color = grey(1.0);
   array.markers.push_back(ship_label);
   Marker vehicle_label = baseMarker(header, "labels", 1, Marker::TEXT_VIEW_FACING);
-  std::snprintf(text, sizeof(text), "T vehicle %.0f N, depth %.1f m", s.tension_vehicle, s.depth);
+  if (k > 1.0)
+    std::snprintf(text, sizeof(text), "T vehicle %.0f N, depth %.1f m (drawn x%g)", s.tension_vehicle, s.depth, k);
+  else
+    std::snprintf(text, sizeof(text), "T vehicle %.0f N, depth %.1f m", s.tension_vehicle, s.depth);
   vehicle_label.text = text;
-  vehicle_label.pose.position = ros_conv::toPoint(s.vehicle.p_cg_W + Eigen::Vector3d(0.0, 0.0, 3.0));
-  vehicle_label.scale.z = 1.5;
+  vehicle_label.pose.position =
+      ros_conv::toPoint(s.vehicle.p_cg_W + Eigen::Vector3d(0.0, 0.0, k * params.vehicle_diameter + 0.75 * h));
+  vehicle_label.scale.z = 0.5 * h;
   vehicle_label.color = grey(1.0);
   array.markers.push_back(vehicle_label);
 }
@@ -221,8 +232,8 @@ visualization_msgs::Marker seabedMarker(const Seabed& seabed, const Eigen::Vecto
     }
   return bottom;
 }
-// The ship as a hull outline at its reference point and heading, on the surface (ns "ship", id 0), and
-// its tow point (id 1).
+// The ship as a hull outline at its reference point and heading, on the surface (ns "ship", id 0), its
+// body above the water (id 2) and its tow point (id 1).
 void addShip(const TowSnapshot& s, const NodeParams& params, const std_msgs::Header& header,
              visualization_msgs::MarkerArray& array)
 {
@@ -238,6 +249,21 @@ void addShip(const TowSnapshot& s, const NodeParams& params, const std_msgs::Hea
     hull.points.push_back(
         ros_conv::toPoint(Eigen::Vector3d(s.ship.x + c * xy[0] - sn * xy[1], s.ship.y + sn * xy[0] + c * xy[1], 0.0)));
   array.markers.push_back(hull);
+  // Its body above the waterline, a cream box to 5 m of freeboard over the parallel body and bow (id 2):
+  // lit from the side it reads at any view, where the outline alone is a thin line.
+  Marker body = baseMarker(header, "ship", 2, Marker::CUBE);
+  body.pose.position =
+      ros_conv::toPoint(Eigen::Vector3d(s.ship.x - 0.1 * l * c, s.ship.y - 0.1 * l * sn, 2.5));  // x from -l to 0.8 l
+  body.pose.orientation =
+      ros_conv::toQuaternion(Eigen::Quaterniond(Eigen::AngleAxisd(s.ship.heading, Eigen::Vector3d::UnitZ())));
+  body.scale.x = 1.8 * l;
+  body.scale.y = 2.0 * b;
+  body.scale.z = 5.0;
+  body.color.r = 0.95;
+  body.color.g = 0.9;
+  body.color.b = 0.72;
+  body.color.a = 1.0;
+  array.markers.push_back(body);
   Marker tow_point = baseMarker(header, "ship", 1, Marker::SPHERE);
   tow_point.pose.position = ros_conv::toPoint(s.tow_point.p_W);
   tow_point.scale.x = tow_point.scale.y = tow_point.scale.z = 2.0;
@@ -290,11 +316,12 @@ visualization_msgs::MarkerArray makeMarkers(const TowSnapshot& s, const VehicleP
     array.markers.push_back(trailMarker(*trails.ship, Eigen::Vector3d(s.ship.x, s.ship.y, 0.0), 0, grey(0.6), header));
   if (trails.vehicle)
   {
-    std_msgs::ColorRGBA orange;
-    orange.r = 1.0;
-    orange.g = 0.55;
-    orange.a = 1.0;
-    array.markers.push_back(trailMarker(*trails.vehicle, s.vehicle.p_cg_W, 1, orange, header));
+    std_msgs::ColorRGBA pink;  // apart from the vehicle's orange and the cable's colour scale
+    pink.r = 1.0;
+    pink.g = 0.7;
+    pink.b = 0.75;
+    pink.a = 1.0;
+    array.markers.push_back(trailMarker(*trails.vehicle, s.vehicle.p_cg_W, 1, pink, header));
   }
   if (seabed)
     array.markers.push_back(seabedMarker(*seabed, s.vehicle.p_cg_W, header));

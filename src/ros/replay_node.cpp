@@ -72,7 +72,17 @@ void ReplayNode::publish(double t)
     tf.transform.translation.z = hull.pose.position.z;
     tf.transform.rotation = hull.pose.orientation;
     if (t != last_tf_t_)  // holding at the end: no repeated stamps for tf listeners
+    {
       tf_broadcaster_.sendTransform(tf);
+      if (!params_.view_frame.empty())
+      {
+        tf.child_frame_id = params_.view_frame;  // midway from the tow point, with the world's axes
+        tf.transform.translation = ros_conv::toVector3(0.5 * (s.joints.col(0) + 0.5 * (bail + tail)));
+        tf.transform.rotation = geometry_msgs::Quaternion();
+        tf.transform.rotation.w = 1.0;
+        tf_broadcaster_.sendTransform(tf);
+      }
+    }
     last_tf_t_ = t;
   }
   visualization_msgs::Marker label = baseMarker(header, "labels", 0, visualization_msgs::Marker::TEXT_VIEW_FACING);

@@ -348,6 +348,8 @@ void TowSimNode::publishTick()
   if (header.stamp > last_tf_stamp_)
   {
     tf_broadcaster_.sendTransform(ros_conv::toVehicleTransform(snapshot, header, params_.vehicle_frame));
+    if (!params_.view_frame.empty())
+      tf_broadcaster_.sendTransform(ros_conv::toViewTransform(snapshot, header, params_.view_frame));
     last_tf_stamp_ = header.stamp;
   }
   fin_loads_pub_.publish(ros_conv::toFinLoads(snapshot, header, params_.vehicle_frame));

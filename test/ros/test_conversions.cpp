@@ -219,6 +219,52 @@ TEST(Conversions, SectionsAndBodiesInCableStateAndMarkers)
   EXPECT_EQ(spheres[1]->action, visualization_msgs::Marker::DELETE);
 }
 
+// The vehicle drawn vehicle_marker_scale times its size keeps its hull's centre and the fins' directions
+// from it (their distances scale), turns half transparent, and its label says so; the view frame sits
+// midway between the tow point and the vehicle's CG with the world's axes.
+TEST(Conversions, TheEnlargedVehicleKeepsItsCentreAndTheViewFrameIsMidway)
+{
+  TowSnapshot s = snapshot();
+  s.joints.conservativeResize(3, 4);  // the tail point after the bail: the vehicle along -x
+  s.joints.col(3) = s.joints.col(2) + Eigen::Vector3d(-VehicleParams().tail_from_bail, 0.0, 0.0);
+  s.attitude = Eigen::Quaterniond(Eigen::AngleAxisd(kPi, Eigen::Vector3d::UnitZ()));
+  s.tow_point.p_W = Eigen::Vector3d(4.0, 2.0, 0.0);
+  auto find = [](const visualization_msgs::MarkerArray& a, const std::string& ns, int id)
+  {
+    for (const visualization_msgs::Marker& m : a.markers)
+      if (m.ns == ns && m.id == id)
+        return m;
+    ADD_FAILURE() << ns << " " << id;
+    return visualization_msgs::Marker();
+  };
+  NodeParams one, ten;
+  ten.vehicle_marker_scale = 10.0;
+  const auto a = makeMarkers(s, VehicleParams(), nullptr, one, header());
+  const auto b = makeMarkers(s, VehicleParams(), nullptr, ten, header());
+  const auto hull1 = find(a, "vehicle", 0), hull10 = find(b, "vehicle", 0);
+  EXPECT_NEAR(hull10.pose.position.x, hull1.pose.position.x, 1e-12);
+  EXPECT_NEAR(hull10.scale.x, 10.0 * hull1.scale.x, 1e-12);
+  EXPECT_NEAR(hull10.scale.y, 10.0 * one.vehicle_diameter, 1e-12);
+  EXPECT_EQ(hull1.color.a, 1.0);
+  EXPECT_EQ(hull10.color.a, 0.5);
+  const auto fin1 = find(a, "vehicle", 3), fin10 = find(b, "vehicle", 3);
+  EXPECT_NEAR(fin10.pose.position.x - hull1.pose.position.x, 10.0 * (fin1.pose.position.x - hull1.pose.position.x),
+              1e-9);
+  EXPECT_NEAR(fin10.pose.position.y - hull1.pose.position.y, 10.0 * (fin1.pose.position.y - hull1.pose.position.y),
+              1e-9);
+  EXPECT_EQ(find(a, "labels", 1).text.find("drawn"), std::string::npos);
+  EXPECT_NE(find(b, "labels", 1).text.find("(drawn x10)"), std::string::npos);
+  EXPECT_EQ(find(b, "ship", 2).type, visualization_msgs::Marker::CUBE);  // the hull above the water
+
+  const geometry_msgs::TransformStamped view = ros_conv::toViewTransform(s, header(), "tow_view");
+  EXPECT_EQ(view.child_frame_id, "tow_view");
+  EXPECT_EQ(view.header.frame_id, "odom");
+  EXPECT_NEAR(view.transform.translation.x, 0.5 * (4.0 - 21.0), 1e-12);
+  EXPECT_NEAR(view.transform.translation.y, 1.0, 1e-12);
+  EXPECT_NEAR(view.transform.translation.z, -1.0, 1e-12);
+  EXPECT_EQ(view.transform.rotation.w, 1.0);
+}
+
 // gnss_ship_node's message checks: a heading as a quaternion about z, from east (REP-103) or from north
 // clockwise (a gyrocompass's, as some GNSS drivers put it in the quaternion's yaw); a fix refused naming
 // its field.

@@ -36,6 +36,9 @@ struct NodeParams
   double vehicle_diameter = 0.3;              // [m] drawn hull diameter
   double ship_length = 60.0;                  // [m] drawn ship hull outline, about the odometry's reference point
   double ship_beam = 12.0;                    // [m]
+  double vehicle_marker_scale = 1.0;          // [-] the vehicle's markers drawn this many times their size
+  double label_height = 3.0;                  // [m] the ship's label (the vehicle's: half of it)
+  std::string view_frame = "tow_view";        // tf frame midway between tow point and vehicle ("" : none)
   double trail_duration = 300.0;              // [s] drawn tracks of ship and vehicle (0: none)
   bool print_status = false;                  // print a status line each second (headless demo)
 };
@@ -109,7 +112,8 @@ struct ReplayParams
   double publish_rate = 10.0;                 // [Hz] wall time: /clock and cable/markers
   bool loop = false;                          // start again after the last shape (else hold it)
   std::string world_frame = "odom";           // frame of the markers
-  std::string vehicle_frame = "tow_vehicle";  // tf child frame at the vehicle (rviz's view follows it)
+  std::string vehicle_frame = "tow_vehicle";  // tf child frame at the vehicle
+  std::string view_frame = "tow_view";        // tf frame midway between tow point and vehicle ("": none)
   double tension_color_max = 5000.0;          // [N] red end of the colour scale
   double cable_marker_width = 0.5;            // [m]
 };

@@ -94,6 +94,10 @@ nav_msgs::Odometry toVehicleOdometry(const TowSnapshot& s, const std_msgs::Heade
                                      const std::string& child_frame);
 geometry_msgs::TransformStamped toVehicleTransform(const TowSnapshot& s, const std_msgs::Header& header,
                                                    const std::string& child_frame);
+// The tf to the frame midway between the tow point and the vehicle's CG, with the world's axes (rviz's view
+// of the whole tow follows it).
+geometry_msgs::TransformStamped toViewTransform(const TowSnapshot& s, const std_msgs::Header& header,
+                                                const std::string& child_frame);
 tow_sim::FinLoads toFinLoads(const TowSnapshot& s, const std_msgs::Header& header, const std::string& vehicle_frame);
 // The cable's force on the ship, -T_1, applied at the tow point: in the world frame of `header`, torque
 // zero (the moment about the tow point; a ship simulator adds its own lever arm).
