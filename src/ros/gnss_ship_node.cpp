@@ -6,9 +6,7 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
-#include <vector>
 
-#include "tow_sim/config/config.h"
 #include "tow_sim/core/constants.h"
 #include "tow_sim/ros/conversions.h"
 
@@ -47,21 +45,11 @@ double headingYaw(const geometry_msgs::QuaternionStamped& heading, const std::st
 
 namespace
 {
-// Its own parameters and, as tow_sim.launch loads the towing configuration here too (its world_frame), a
-// configuration file's keys: any other private parameter is a typo.
+// Its own parameters; the towing configuration's keys are allowed beside them (tow_sim.launch loads it
+// here too, for its world_frame).
 GnssShipParams readParams(const ros::NodeHandle& pnh)
 {
-  try
-  {
-    std::vector<std::string> known = configurationFileKeys();
-    for (const std::string& key : topLevelKeys(gnssShipParams()))
-      known.push_back(key);
-    requireKnownKeys(ros_conv::privateParameters(pnh), pnh.getNamespace() + "/", known);
-  }
-  catch (const std::invalid_argument& e)
-  {
-    throw ros_conv::withSlashes(e);
-  }
+  ros_conv::requireConfigurationOrOwnKeys(pnh, gnssShipParams());
   return ros_conv::readPrivateParams(pnh, gnssShipParams(), validate);
 }
 

@@ -41,12 +41,19 @@ visualization_msgs::Marker tensionLine(const std_msgs::Header& header, const Eig
 namespace
 {
 
-std_msgs::ColorRGBA grey(double level)
+std_msgs::ColorRGBA rgba(double r, double g, double b, double a = 1.0)
 {
   std_msgs::ColorRGBA c;
-  c.r = c.g = c.b = level;
-  c.a = 1.0;
+  c.r = r;
+  c.g = g;
+  c.b = b;
+  c.a = a;
   return c;
+}
+
+std_msgs::ColorRGBA grey(double level)
+{
+  return rgba(level, level, level);
 }
 
 // Cable: tow point to bail, each joint coloured by its tension (magenta where slack); with sections, a strip
@@ -97,9 +104,7 @@ void addBodies(const TowSnapshot& s, const CableLook& look, const std_msgs::Head
     m.color = grey(0.25);  // a clump
     if (look.body_floats[i])
     {
-      m.color.r = 1.0;  // a float: yellow
-      m.color.g = 0.85;
-      m.color.b = 0.0;
+      m.color = rgba(1.0, 0.85, 0.0);  // a float: yellow
     }
     array.markers.push_back(m);
   }
@@ -139,9 +144,7 @@ void addVehicle(const TowSnapshot& s, const VehicleParams& vp, const NodeParams&
   hull.pose.orientation = ros_conv::toQuaternion(s.attitude);
   hull.scale.x = k * hull_length;
   hull.scale.y = hull.scale.z = diameter;
-  hull.color.r = 1.0;  // a towfish's orange: apart from the cable's blue-green-red scale at any tension below 3/4
-  hull.color.g = 0.5;
-  hull.color.a = alpha;
+  hull.color = rgba(1.0, 0.5, 0.0, alpha);  // orange: apart from the cable's colour scale below 3/4 of it
   array.markers.push_back(hull);
 
   const double span = 0.8 * diameter, chord = 0.12 * k * hull_length;
@@ -181,9 +184,7 @@ void addForceAndLabels(const TowSnapshot& s, const NodeParams& params, const std
   arrow.scale.x = 0.4;
   arrow.scale.y = 0.8;
   arrow.scale.z = 1.0;
-  arrow.color.r = 1.0;
-  arrow.color.g = 0.2;
-  arrow.color.b = 0.2;
+  arrow.color = rgba(1.0, 0.2, 0.2);
   array.markers.push_back(arrow);
 
   char text[128];
@@ -215,10 +216,7 @@ visualization_msgs::Marker seabedMarker(const Seabed& seabed, const Eigen::Vecto
 {
   visualization_msgs::Marker bottom = baseMarker(header, "seabed", 0, visualization_msgs::Marker::LINE_LIST);
   bottom.scale.x = 0.6;
-  bottom.color.r = 0.85;  // sand
-  bottom.color.g = 0.75;
-  bottom.color.b = 0.5;
-  bottom.color.a = 1.0;
+  bottom.color = rgba(0.85, 0.75, 0.5);  // sand
   const double step = 40.0, half = 400.0;
   const double x0 = std::round(centre_W.x() / step) * step - half, y0 = std::round(centre_W.y() / step) * step - half;
   auto at = [&](double x, double y) { return ros_conv::toPoint(Eigen::Vector3d(x, y, seabed.bottomZ(x, y))); };
@@ -259,17 +257,12 @@ void addShip(const TowSnapshot& s, const NodeParams& params, const std_msgs::Hea
   body.scale.x = 1.8 * l;
   body.scale.y = 2.0 * b;
   body.scale.z = 5.0;
-  body.color.r = 0.95;
-  body.color.g = 0.9;
-  body.color.b = 0.72;
-  body.color.a = 1.0;
+  body.color = rgba(0.95, 0.9, 0.72);
   array.markers.push_back(body);
   Marker tow_point = baseMarker(header, "ship", 1, Marker::SPHERE);
   tow_point.pose.position = ros_conv::toPoint(s.tow_point.p_W);
   tow_point.scale.x = tow_point.scale.y = tow_point.scale.z = 2.0;
-  tow_point.color.r = 1.0;
-  tow_point.color.g = 0.8;
-  tow_point.color.b = 0.1;
+  tow_point.color = rgba(1.0, 0.8, 0.1);
   array.markers.push_back(tow_point);
 }
 
@@ -316,12 +309,8 @@ visualization_msgs::MarkerArray makeMarkers(const TowSnapshot& s, const VehicleP
     array.markers.push_back(trailMarker(*trails.ship, Eigen::Vector3d(s.ship.x, s.ship.y, 0.0), 0, grey(0.6), header));
   if (trails.vehicle)
   {
-    std_msgs::ColorRGBA pink;  // apart from the vehicle's orange and the cable's colour scale
-    pink.r = 1.0;
-    pink.g = 0.7;
-    pink.b = 0.75;
-    pink.a = 1.0;
-    array.markers.push_back(trailMarker(*trails.vehicle, s.vehicle.p_cg_W, 1, pink, header));
+    // Pink: apart from the vehicle's orange and the cable's colour scale.
+    array.markers.push_back(trailMarker(*trails.vehicle, s.vehicle.p_cg_W, 1, rgba(1.0, 0.7, 0.75), header));
   }
   if (seabed)
     array.markers.push_back(seabedMarker(*seabed, s.vehicle.p_cg_W, header));

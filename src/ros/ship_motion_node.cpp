@@ -23,12 +23,8 @@ ShipMotionParams readParams(const ros::NodeHandle& pnh)
 {
   try
   {
-    const YAML::Node parameters = ros_conv::privateParameters(pnh);
-    std::vector<std::string> known = configurationFileKeys();
-    for (const std::string& key : topLevelKeys(shipMotionParams()))
-      known.push_back(key);
-    requireKnownKeys(parameters, pnh.getNamespace() + "/", known);
-    return readShipMotionParams(parameters, pnh.getNamespace());
+    ros_conv::requireConfigurationOrOwnKeys(pnh, shipMotionParams());
+    return readShipMotionParams(ros_conv::privateParameters(pnh), pnh.getNamespace());
   }
   catch (const std::invalid_argument& e)
   {

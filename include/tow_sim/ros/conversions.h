@@ -15,6 +15,7 @@
 #include <yaml-cpp/yaml.h>
 #include <Eigen/Geometry>
 #include <string>
+#include <vector>
 
 #include <ros/node_handle.h>
 #include <stdexcept>
@@ -77,6 +78,25 @@ S readOwnPrivateParams(const ros::NodeHandle& pnh, const ParamTable<S>& table,
     throw withSlashes(e);
   }
   return params;
+}
+
+// For a node that tow_sim.launch also loads the towing configuration into (ship_motion_node for the waves,
+// gnss_ship_node for the world frame): a private key neither a configuration file's nor this table's is
+// a typo, refused naming it and the nearest known key.
+template <class S>
+void requireConfigurationOrOwnKeys(const ros::NodeHandle& pnh, const ParamTable<S>& table)
+{
+  std::vector<std::string> known = configurationFileKeys();
+  for (const std::string& key : topLevelKeys(table))
+    known.push_back(key);
+  try
+  {
+    requireKnownKeys(privateParameters(pnh), pnh.getNamespace() + "/", known);
+  }
+  catch (const std::invalid_argument& e)
+  {
+    throw withSlashes(e);
+  }
 }
 
 geometry_msgs::Point toPoint(const Eigen::Vector3d& v);
