@@ -41,6 +41,9 @@ const ParamTable<CableParams>& cableParams()
                           "unset, the rigid chain (the report's)")
           .number("axial_damping", &C::axial_damping, "N s", 0.0, 1e10, kClosed,
                   "c of the elastic cable, the axial force per unit strain rate (needs axial_stiffness)")
+          .number("bending_stiffness", &C::bending_stiffness, "N m^2", 0.0, 1e9, kClosed,
+                  "EI: a moment EI θ / ℓ̄ at each joint between two segments turned by θ, toward straight (ℓ̄ the "
+                  "mean of their lengths; between sections, the two halves in series); 0, none (the report's)")
           .custom("sections", "", "[]",
                   "each needs length and segments; lengths add up to length; ≤ 100000 segments in all; all "
                   "elastic or all rigid",

@@ -2,6 +2,8 @@
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
 
 namespace tow_sim
 {
@@ -14,6 +16,36 @@ Eigen::Matrix3d cross(const Eigen::Vector3d& r)
   Eigen::Matrix3d m;
   m << 0.0, -r.z(), r.y(), r.z(), 0.0, -r.x(), -r.y(), r.x(), 0.0;
   return m;
+}
+
+// The bending moment on cable segment e from its joints with its neighbours (physics.md §11), from the
+// definition: at the joint between segments i-1 and i, kappa theta about n = s_{i-1} x s_i / |...| on the
+// forward one and its opposite on the aft one, theta = acos(s_{i-1} . s_i), kappa the two half-segments'
+// flexibilities l/(2 EI) in series.
+Eigen::Vector3d bendingOn(const ChainModel& model, const ChainGeometry& geometry, const ShipEndState& ship,
+                          const Eigen::Matrix3Xd& x, int e)
+{
+  Eigen::Vector3d moment = Eigen::Vector3d::Zero();
+  if (e >= geometry.segments)
+    return moment;
+  auto axis = [&](int i) -> Eigen::Vector3d
+  { return (x.col(i) - (i == 0 ? ship.p_W : Eigen::Vector3d(x.col(i - 1)))).normalized(); };
+  auto jointMoment = [&](int i) -> Eigen::Vector3d  // on segment i-1
+  {
+    const double ei_f = model.segmentCable(i - 1, geometry).bending_stiffness;
+    const double ei_a = model.segmentCable(i, geometry).bending_stiffness;
+    const Eigen::Vector3d n = axis(i - 1).cross(axis(i));
+    if (ei_f == 0.0 || ei_a == 0.0 || n.norm() == 0.0)
+      return Eigen::Vector3d::Zero();
+    const double kappa =
+        1.0 / (geometry.elementLength(i - 1) / (2.0 * ei_f) + geometry.elementLength(i) / (2.0 * ei_a));
+    return kappa * std::acos(std::clamp(axis(i - 1).dot(axis(i)), -1.0, 1.0)) * n.normalized();
+  };
+  if (e >= 1)
+    moment -= jointMoment(e);
+  if (e + 1 < geometry.segments)
+    moment += jointMoment(e + 1);
+  return moment;
 }
 }  // namespace
 
@@ -49,6 +81,7 @@ void addElementRows(const ChainModel& model, const ChainGeometry& geometry, cons
   // has the known part -2 (L'/L) w, moved here to the loads.
   if (e == 0)
     body.wrench -= body.mass.rightCols<3>() * (-2.0 * geometry.first_rate / k.length * k.omega);
+  body.wrench.tail<3>() += bendingOn(model, geometry, ship, x, e);
   const double g = body.cg_fraction;
   const double l = k.length;
   const Eigen::Vector3d& s = k.s;

@@ -127,6 +127,31 @@ TEST(ImplicitStepping, ShippedScenariosAgreeWithTightDopri5)
     }
 }
 
+// A stiff cable (cable.bending_stiffness, physics.md (P48)) in the turn: the stage matrix carries the
+// bending's stiffness as addBendingStiffness approximates it, and the results meet the same bars against
+// tight dopri5. The bending does move them (the tow point's tension by far more than the bar).
+TEST(ImplicitStepping, ABendingStiffCableAgreesWithTightDopri5)
+{
+  Scenario sc = shipped("turn_180");
+  sc.duration = 300.0;
+  sc.config.cable.bending_stiffness = 5000.0;  // [N m^2] on 6 m segments
+  const std::vector<TowSnapshot> stiff = run(sc, 50, dopri5(1e-10));
+  const Deviation d = worstDeviation(run(sc, 50, implicitAdaptive()), stiff);
+  std::printf(
+      "bending stiff cable, implicit vs dopri5 1e-10: depth %.1e, layback %.1e, tension ship %.1e, "
+      "vehicle %.1e, diversion %.3f m\n",
+      d.depth, d.layback, d.tension_ship, d.tension_vehicle, d.diversion);
+  EXPECT_LT(d.depth, 5e-3);
+  EXPECT_LT(d.layback, 5e-3);
+  EXPECT_LT(d.tension_ship, 5e-3);
+  EXPECT_LT(d.tension_vehicle, 5e-3);
+  EXPECT_LT(d.diversion, 1.0);
+  sc.config.cable.bending_stiffness = 0.0;
+  const Deviation bent = worstDeviation(run(sc, 50, implicitAdaptive()), stiff);
+  std::printf("the same without bending stiffness: tension ship %.1e\n", bent.tension_ship);
+  EXPECT_GT(bent.tension_ship, 2e-2);
+}
+
 // A ship along +x slowing from 2.5 to 1 m/s between t = 60 and 120 s on a quintic smoothstep: its
 // acceleration and jerk are continuous (the scripted ship's speed ramp has corners, and a step across a
 // jump of the input is first order whatever the method: the tow tension follows the ship's acceleration).

@@ -87,6 +87,8 @@ struct CableParams
   // The elastic, tension-only cable (physics.md §9): unset, the rigid inextensible chain (the report's).
   std::optional<double> axial_stiffness;  // [N] EA, > 0 .. 1e11
   double axial_damping = 0.0;             // [N s] c, the axial force per unit strain rate, >= 0 .. 1e10
+  // Bending (physics.md §11): a restoring moment at each joint between two segments (0: none, the report's).
+  double bending_stiffness = 0.0;  // [N m^2] EI, >= 0 .. 1e9
 
   bool elastic() const { return axial_stiffness.has_value(); }
   // [N] the tension of a segment of rest length rest [m] at length length [m] stretching at rate [m/s]:

@@ -141,6 +141,50 @@ void addAxialStiffness(const CableParams& cable, double rest_length, const Eleme
   }
 }
 
+void addBendingStiffness(const ChainModel& model, const ChainGeometry& geometry, const Eigen::Vector3d& first,
+                         const Eigen::Ref<const Eigen::Matrix3Xd>& x, int e, ElementJacobian& out)
+{
+  if (e >= geometry.segments)
+    return;
+  auto joint = [&](int j) -> Eigen::Vector3d { return j < 0 ? first : Eigen::Vector3d(x.col(j)); };
+  // The spring at the joint between segments i - 1 and i (x.col(i - 1)): beta = s_f x s_a, d beta = B_o dx_o +
+  // B_m dx_m + B_n dx_n over the joints before, at and after it (o, m, n: joints i - 2, i - 1, i), with
+  // ds = (I - s s^T) d(x_a - x_f) / l.
+  struct Spring
+  {
+    double kappa;
+    Eigen::Matrix3d o, m, n;
+  };
+  auto spring = [&](int i) -> Spring
+  {
+    const Eigen::Vector3d d_f = joint(i - 1) - joint(i - 2), d_a = joint(i) - joint(i - 1);
+    const double l_f = d_f.norm(), l_a = d_a.norm();
+    const Eigen::Vector3d s_f = d_f / l_f, s_a = d_a / l_a;
+    const Eigen::Matrix3d I3 = Eigen::Matrix3d::Identity();
+    const Eigen::Matrix3d A = skew(s_a) * (I3 - s_f * s_f.transpose()) / l_f;  // d beta / d(x_m - x_o) = -A
+    const Eigen::Matrix3d C = skew(s_f) * (I3 - s_a * s_a.transpose()) / l_a;  // d beta / d(x_n - x_m) = C
+    return { model.jointBendingStiffness(i, geometry), A, -A - C, C };
+  };
+  auto add =
+      [&](double w_ff, const Eigen::Matrix3d& B_f, double w_fa, const Eigen::Matrix3d& B_a, double w_aa, double kappa)
+  {
+    out.dh_dx.topLeftCorner<3, 3>() -= w_ff * kappa * B_f.transpose() * B_f;
+    out.dh_dx.topRightCorner<3, 3>() -= w_fa * kappa * B_f.transpose() * B_a;
+    out.dh_dx.bottomLeftCorner<3, 3>() -= w_fa * kappa * B_a.transpose() * B_f;
+    out.dh_dx.bottomRightCorner<3, 3>() -= w_aa * kappa * B_a.transpose() * B_a;
+  };
+  if (e >= 1)  // at its forward joint: segment e holds (m, n); m's diagonal shared, n's with o's moved onto it
+  {
+    const Spring sp = spring(e);
+    add(0.5, sp.m, 1.0, sp.n, 2.0, sp.kappa);
+  }
+  if (e + 1 < geometry.segments)  // at its aft joint: segment e holds (o, m)
+  {
+    const Spring sp = spring(e + 1);
+    add(2.0, sp.o, 1.0, sp.m, 0.5, sp.kappa);
+  }
+}
+
 void elementJacobian(const ChainModel& model, int e, double t, const ElementKinematics& k,
                      const ChainGeometry& geometry, const ChainData& data, double mu, ElementJacobian& out,
                      const Vector6d* accelerations)

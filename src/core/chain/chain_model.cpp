@@ -77,6 +77,7 @@ ChainModel::ChainModel(const std::vector<CableParams>& sections, const std::vect
                                   "].axial_stiffness: every section must be elastic or every one rigid");
     sections_.push_back({ sections[i], CableSegmentModel::fromParams(sections[i], env_, numerics_) });
     segments_ += sections[i].segments;
+    bends_ = bends_ || sections[i].bending_stiffness > 0.0;
     if (i > 0)
       runs->push_back({ sections[i].segments, sections_.back().segment.length });
   }
@@ -148,6 +149,15 @@ void ChainModel::elementDynamics(int e, double t, const ElementKinematics& k, co
     end_body_->dynamics(t, k, data.environment, data.actuators, out);
   if (with_contact && seabed())
     addContact(e, k, geometry, out);
+}
+
+double ChainModel::jointBendingStiffness(int e, const ChainGeometry& geometry) const
+{
+  const double ei_f = segmentCable(e - 1, geometry).bending_stiffness,
+               ei_a = segmentCable(e, geometry).bending_stiffness;
+  if (ei_f <= 0.0 || ei_a <= 0.0)
+    return 0.0;
+  return 1.0 / (0.5 * geometry.elementLength(e - 1) / ei_f + 0.5 * geometry.elementLength(e) / ei_a);
 }
 
 void ChainModel::addContact(int e, const ElementKinematics& k, const ChainGeometry& geometry, BodyDynamics& out) const

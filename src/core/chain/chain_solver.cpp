@@ -25,6 +25,21 @@ void addStretch(const CableParams& cable, double rest_length, double mass, const
   m.h_a -= m.tension * k.s;
   m.c = 0.0;
 }
+
+// Bending (physics.md §11): the moments on cable segment e (axis s) from the joints at its two ends, each
+// k theta toward straight, between it and its neighbours (none at the tow point or the bail).
+Eigen::Vector3d bendingMoments(const ChainModel& model, const ChainGeometry& geometry, const Eigen::Vector3d& first,
+                               const Eigen::Ref<const Eigen::Matrix3Xd>& x, int e, const Eigen::Vector3d& s)
+{
+  auto axis = [&](int i) -> Eigen::Vector3d
+  { return (x.col(i) - (i == 0 ? first : Eigen::Vector3d(x.col(i - 1)))).normalized(); };
+  Eigen::Vector3d moment = Eigen::Vector3d::Zero();
+  if (e >= 1)
+    moment -= bendingMoment(axis(e - 1), s, model.jointBendingStiffness(e, geometry));
+  if (e + 1 < geometry.segments)
+    moment += bendingMoment(s, axis(e + 1), model.jointBendingStiffness(e + 1, geometry));
+  return moment;
+}
 }  // namespace
 
 void ChainSolver::solve(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data, double t,
@@ -71,6 +86,8 @@ void ChainSolver::elementTerms(const ChainModel& model, const ChainGeometry& geo
     // dw/dt = s x (a_a - a_f)/L - 2 (L'/L) w: the known part goes to the loads.
     if (e == 0 && geometry.first_rate != 0.0)
       body.wrench -= body.mass.rightCols<3>() * (-2.0 * geometry.first_rate / k.length * k.omega);
+    if (model.bends() && e < geometry.segments)
+      body.wrench.tail<3>() += bendingMoments(model, geometry, ship.p_W, x, e, k.s);
 
     // (S1): [a_G; dw/dt] = J_f a_f + J_a a_a; (S5): the projected inertia and loads, M_f* and h_f of (S3),
     // M_a* and h_a of (S4).

@@ -3,6 +3,7 @@
 #include "tow_sim/core/geometry.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -48,6 +49,18 @@ CableSegmentModel CableSegmentModel::fromParams(const CableParams& cable, const 
   m.smoothing_speed = numerics.tangential_smoothing_speed;
   m.stretches = cable.elastic();
   return m;
+}
+
+Eigen::Vector3d bendingMoment(const Eigen::Vector3d& s_f, const Eigen::Vector3d& s_a, double k)
+{
+  const Eigen::Vector3d b = s_f.cross(s_a);  // |b| = sin theta
+  const double sin_theta = b.norm();
+  const double theta = std::atan2(sin_theta, s_f.dot(s_a));
+  // theta / sin theta -> 1 as theta -> 0 (its series to theta^4 below 1e-4 rad); folded back flat (theta = pi,
+  // b = 0) there is no preferred way to unfold and no moment.
+  const double ratio =
+      sin_theta > 1e-4 || s_f.dot(s_a) < 0.0 ? theta / std::max(sin_theta, 1e-300) : 1.0 + theta * theta / 6.0;
+  return k * ratio * b;
 }
 
 VelocityForces velocityForces(const ElementKinematics& k, const Eigen::Vector3d& current_W, double c1, double c2,

@@ -24,6 +24,8 @@ void ImplicitStepper::linearise(const ChainModel& model, const ChainGeometry& ge
     Vector6d a_joints;
     a_joints << (e == 0 ? ship.a_W : Eigen::Vector3d(a.col(e - 1))), a.col(e);
     elementJacobian(model, e, t, k, geometry, data, multipliers[i], jacobians_[i], &a_joints);
+    if (model.bends())
+      addBendingStiffness(model, geometry, ship.p_W, x, e, jacobians_[i]);
     stage_[i].s = terms[i].s;
     stage_[i].constrained = terms[i].constrained;
   }

@@ -26,7 +26,8 @@ struct ElementJacobian
 //   every element: the geometric stiffness of its tension T = max(-mu, 0) turning with the axis,
 //     -T/d (I - s s^T) on the relative displacement of its joints (compression is left out: it would
 //     soften N);
-//   elastic segments: the axial stiffness and damping of their tension (addAxialStiffness).
+//   elastic segments: the axial stiffness and damping of their tension (addAxialStiffness);
+//   (added by the implicit stepper, with the neighbours' positions) bending, addBendingStiffness.
 // Left out (a W-method keeps its order with any matrix; only the step it can take changes): on cable
 // segments the drag's and the weight's dependence on the direction, the current profile's on depth and the
 // waves' dependence on position (and their acceleration's load);
@@ -43,5 +44,15 @@ void addGeometricStiffness(const ElementKinematics& k, double mu, ElementJacobia
 // An elastic segment of rest length rest_length [m]: its tension's derivatives in the joints' positions and
 // velocities along the axis (EA/d0, c/d0), while it is taut (added by elementJacobian).
 void addAxialStiffness(const CableParams& cable, double rest_length, const ElementKinematics& k, ElementJacobian& out);
+
+// Bending (physics.md (P48)) on cable segment e, whose joints are x_f = joint e - 1 (first: the tow point
+// `first`) and x_a = joint e of the positions x: the stiffness of the springs at its two ends, added to
+// out.dh_dx. A joint's spring couples three joints (the joint and its two neighbours); per element the
+// stage matrix holds two. The Gauss-Newton Hessian kappa B^T B of the energy 1/2 kappa |s_f x s_a|^2 (exact
+// on a straight chain) is split between the spring's two segments, and the block coupling the outer two
+// joints, which neither segment holds, is moved onto their diagonals (B_o^T B_o each, which keeps the
+// matrix positive semi-definite: the stage matrix stiffer, never softer, than the bending).
+void addBendingStiffness(const ChainModel& model, const ChainGeometry& geometry, const Eigen::Vector3d& first,
+                         const Eigen::Ref<const Eigen::Matrix3Xd>& x, int e, ElementJacobian& out);
 
 }  // namespace tow_sim

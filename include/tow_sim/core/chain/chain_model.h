@@ -155,6 +155,11 @@ public:
   }
   CableSegmentModel segmentModel(int e, const ChainGeometry& geometry) const;
   bool elastic() const { return cable().elastic(); }  // every section alike
+  bool bends() const { return bends_; }               // some section has a bending stiffness
+  // [N m/rad] the rotational stiffness of the joint between cable segments e - 1 and e (1 <= e < segments)
+  // in a geometry (physics.md §11): EI / ((l_1 + l_2)/2) within a section; between two sections their
+  // halves in series, 1 / (l_1 / (2 EI_1) + l_2 / (2 EI_2)) (0 when either EI is).
+  double jointBendingStiffness(int e, const ChainGeometry& geometry) const;
   const std::vector<JointBody>& bodies() const { return bodies_; }
   // The point body at cable segment e's aft joint in a geometry (null: none).
   const JointBody* bodyAft(int e, const ChainGeometry& geometry) const
@@ -213,6 +218,7 @@ private:
   std::shared_ptr<const std::vector<SegmentRun>> aft_sections_;  // sections_[1..] as runs (null: one section)
   int segments_ = 0;                                             // nu, all sections
   std::vector<JointBody> bodies_;
+  bool bends_ = false;
   std::shared_ptr<const EndBody> end_body_;
   Environment env_;
   NumericsParams numerics_;

@@ -56,6 +56,11 @@ struct CableSegmentModel
   static CableSegmentModel fromParams(const CableParams& cable, const Environment& env, const NumericsParams& numerics);
 };
 
+// The bending moment [N m] on the forward of two cable segments with unit axes s_f and s_a that meet at a
+// joint of rotational stiffness k [N m/rad] (physics.md §11): k theta about s_f x s_a, theta the angle between
+// them, turning s_f toward s_a; the aft segment carries its opposite. Smooth through theta = 0.
+Eigen::Vector3d bendingMoment(const Eigen::Vector3d& s_f, const Eigen::Vector3d& s_a, double k);
+
 // Velocity forces of a cylinder-like element through the water (Appendix D), evaluated at the element
 // centre: normal drag, tangential drag and the rotation-drag moment M_V. Returns force, adds moment.
 struct VelocityForces
