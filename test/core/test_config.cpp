@@ -7,6 +7,7 @@
 #include <fstream>
 #include <string>
 
+#include "core/config_error.h"
 #include "core/temp_file.h"
 #include "tow_sim/config/config.h"
 #include "tow_sim/config/param_yaml.h"
@@ -18,15 +19,7 @@ namespace
 {
 std::string errorOf(const std::string& yaml, const std::string& prefix = "")
 {
-  try
-  {
-    loadConfig(YAML::Load(yaml), prefix);
-  }
-  catch (const std::invalid_argument& e)
-  {
-    return e.what();
-  }
-  return "(accepted)";
+  return test::configError(yaml, prefix);
 }
 
 void expectSameTable(const AngleTable& a, const AngleTable& b)

@@ -8,6 +8,7 @@
 #include <string>
 #include <utility>
 
+#include "core/config_error.h"
 #include "tow_sim/config/config.h"
 #include "tow_sim/core/run/tow_run.h"
 #include "tow_sim/scenario/towing_chart.h"
@@ -32,15 +33,7 @@ cable:
 
 std::string errorOf(const std::string& yaml)
 {
-  try
-  {
-    loadConfig(YAML::Load(yaml), "/tow_sim/");
-  }
-  catch (const std::invalid_argument& e)
-  {
-    return e.what();
-  }
-  return "(accepted)";
+  return test::configError(yaml, "/tow_sim/");
 }
 
 // kTwoPart with `from` replaced by `to` (which must be there).

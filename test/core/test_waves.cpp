@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/chain_fixtures.h"
+#include "core/config_error.h"
 #include "tow_sim/config/config.h"
 #include "tow_sim/core/constants.h"
 #include "tow_sim/core/environment/waves.h"
@@ -264,18 +265,7 @@ TEST(Waves, SpreadingHasTheMeanCosineOfItsDistributionAndSeedsRepeat)
 
 TEST(Waves, BadParametersAreRefusedNamingTheKeyAndTheRange)
 {
-  auto error = [](const std::string& yaml)
-  {
-    try
-    {
-      loadConfig(YAML::Load(yaml));
-    }
-    catch (const std::invalid_argument& e)
-    {
-      return std::string(e.what());
-    }
-    return std::string("(accepted)");
-  };
+  const auto error = [](const std::string& yaml) { return test::configError(yaml); };
   std::string e = error("environment: {waves: {type: regular, height: -1}}");
   EXPECT_NE(e.find("environment.waves.height = -1"), std::string::npos) << e;
   EXPECT_NE(e.find("(0, 30] [m]"), std::string::npos) << e;
