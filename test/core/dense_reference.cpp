@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tow_sim/core/chain/chain_solver.h"
+
 namespace tow_sim
 {
 namespace test
@@ -159,6 +161,17 @@ DenseSolution solveDense(const ChainModel& model, const ChainGeometry& geometry,
   out.accelerations = Eigen::Map<const Eigen::Matrix3Xd>(z.data(), 3, n);
   out.tensions = Eigen::Map<const Eigen::Matrix3Xd>(z.data() + 3 * n, 3, n);
   return out;
+}
+
+SweepDeviation sweepAgainstDense(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data,
+                                 double t, const ShipEndState& ship, const Eigen::Matrix3Xd& x,
+                                 const Eigen::Matrix3Xd& v)
+{
+  Eigen::Matrix3Xd a(3, x.cols()), T(3, x.cols());
+  ChainSolver solver;
+  solver.solve(model, geometry, data, t, ship, x, v, a, &T);
+  const DenseSolution ref = solveDense(model, geometry, data, t, ship, x, v);
+  return { (a - ref.accelerations).norm() / ref.accelerations.norm(), (T - ref.tensions).norm() / ref.tensions.norm() };
 }
 
 }  // namespace test

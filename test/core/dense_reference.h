@@ -25,5 +25,15 @@ DenseSolution solveDense(const ChainModel& model, const ChainGeometry& geometry,
 DenseSolution solveDense(const ChainModel& model, double t, const ShipEndState& ship, const Eigen::Matrix3Xd& x,
                          const Eigen::Matrix3Xd& v);
 
+// The O(nu) sweep (ChainSolver) against solveDense on one state: ||a - a_ref|| / ||a_ref|| and the same for
+// the tensions.
+struct SweepDeviation
+{
+  double accelerations = 0.0, tensions = 0.0;  // [-]
+};
+SweepDeviation sweepAgainstDense(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data,
+                                 double t, const ShipEndState& ship, const Eigen::Matrix3Xd& x,
+                                 const Eigen::Matrix3Xd& v);
+
 }  // namespace test
 }  // namespace tow_sim
