@@ -1,10 +1,11 @@
 // tow_sim_batch: runs a scenario faster than real time, without roscore.
-//   tow_sim_batch --scenario FILE.yaml --out DIR
+//   tow_sim_batch --scenario FILE.yaml --out DIR [--precision DIGITS]
 // Writes DIR/timeseries.csv, DIR/shapes.csv, DIR/scenario.yaml (the scenario with every default
 // filled in), DIR/events.csv (the cable parting, if it did) and DIR/state_<t>.txt at each
 // simulation.save_state_at. Exit codes: 0 done; 2 bad arguments,
 // scenario or saved initial state; 3 the run diverged (the CSV files then hold the run up to the last good
-// output and the error says so); 4 cannot write DIR.
+// output and the error says so); 4 cannot write DIR. --precision: significant digits of the CSV's numbers
+// (6..17, default 10; 17 gives every double exactly).
 
 #include <chrono>
 #include <cstdio>
@@ -27,7 +28,8 @@ using namespace tow_sim;
 
 int usage(const std::string& why)
 {
-  std::fprintf(stderr, "tow_sim_batch: %s\nusage: tow_sim_batch --scenario FILE.yaml --out DIR\n", why.c_str());
+  std::fprintf(stderr, "tow_sim_batch: %s\nusage: tow_sim_batch --scenario FILE.yaml --out DIR [--precision DIGITS]\n",
+               why.c_str());
   return 2;
 }
 
@@ -71,7 +73,8 @@ void writeEvents(const std::string& out_dir, const BatchResult& result)
 }
 
 // Runs the scenario into the open CSV files and the state files, and says how it went (the exit code).
-int runAndReport(const Scenario& sc, const std::string& out_dir, std::ostream& series, std::ostream& shapes)
+int runAndReport(const Scenario& sc, const std::string& out_dir, std::ostream& series, std::ostream& shapes,
+                 int precision)
 {
   Progress progress(sc.duration);
   BatchResult result;
@@ -97,7 +100,7 @@ int runAndReport(const Scenario& sc, const std::string& out_dir, std::ostream& s
   try
   {
     runScenario(
-        sc, series, shapes, result, [&progress](double t) { progress.update(t); }, save);
+        sc, series, shapes, result, [&progress](double t) { progress.update(t); }, save, precision);
   }
   catch (const BadInitialState& e)
   {
@@ -135,12 +138,21 @@ int runAndReport(const Scenario& sc, const std::string& out_dir, std::ostream& s
 int main(int argc, char** argv)
 {
   std::string scenario_path, out_dir;
+  int precision = 10;
   for (int i = 1; i < argc; ++i)
   {
     if (!std::strcmp(argv[i], "--scenario") && i + 1 < argc)
       scenario_path = argv[++i];
     else if (!std::strcmp(argv[i], "--out") && i + 1 < argc)
       out_dir = argv[++i];
+    else if (!std::strcmp(argv[i], "--precision") && i + 1 < argc)
+    {
+      char* end = nullptr;
+      const long digits = std::strtol(argv[++i], &end, 10);
+      if (*end != '\0' || digits < 6 || digits > 17)
+        return usage(std::string("--precision ") + argv[i] + ": a whole number of digits in [6, 17]");
+      precision = static_cast<int>(digits);
+    }
     else
       return usage(std::string("unknown argument '") + argv[i] + "'");
   }
@@ -168,5 +180,5 @@ int main(int argc, char** argv)
   resolved << "# " << scenario_path << " with every default filled in, as run by tow_sim_batch\n" << toYaml(sc) << "\n";
   resolved.close();
 
-  return runAndReport(sc, out_dir, series, shapes);
+  return runAndReport(sc, out_dir, series, shapes, precision);
 }

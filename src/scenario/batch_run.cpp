@@ -32,31 +32,62 @@ std::string shapesHeader(bool sections)
   return sections ? "t,joint,x,y,z,tension,slack,section" : "t,joint,x,y,z,tension,slack";
 }
 
-std::string timeseriesRow(const TowSnapshot& s)
+std::vector<double> timeseriesValues(const TowSnapshot& s)
 {
-  std::ostringstream row;
-  row.precision(10);
+  const double blank = std::numeric_limits<double>::quiet_NaN();
   const VehicleOutputs& o = s.vehicle;
-  row << s.t << ',' << s.ship.x << ',' << s.ship.y << ',' << s.ship.z << ',' << s.ship.speed << ',' << o.p_cg_W.x()
-      << ',' << o.p_cg_W.y() << ',' << o.p_cg_W.z() << ",0," << s.pitch << ',' << s.yaw << ',' << s.depth << ','
-      << s.layback << ',' << s.diversion.offset << ',' << s.diversion.rate << ',' << s.tension_ship << ','
-      << s.tension_vehicle << ',' << o.rudder << ',' << o.elevator << ',' << o.thrust << ',' << s.max_length_error
-      << ',' << s.cable_length << ',' << s.payout_rate << ',';
-  if (s.seabed_present)
-    row << s.vehicle_altitude;  // blank without a seabed
-  row << ',' << s.contacts << ',';
-  if (s.depth_setpoint)
-    row << *s.depth_setpoint;  // blank without an autopilot
-  row << ',' << s.tension_ship_range.min << ',' << s.tension_ship_range.max << ',' << s.tension_vehicle_range.min << ','
-      << s.tension_vehicle_range.max << ',' << s.snap_count << ',' << s.max_strain;
+  std::vector<double> v = { s.t,
+                            s.ship.x,
+                            s.ship.y,
+                            s.ship.z,
+                            s.ship.speed,
+                            o.p_cg_W.x(),
+                            o.p_cg_W.y(),
+                            o.p_cg_W.z(),
+                            0.0,  // vehicle_roll: the report's vehicle does not roll
+                            s.pitch,
+                            s.yaw,
+                            s.depth,
+                            s.layback,
+                            s.diversion.offset,
+                            s.diversion.rate,
+                            s.tension_ship,
+                            s.tension_vehicle,
+                            o.rudder,
+                            o.elevator,
+                            o.thrust,
+                            s.max_length_error,
+                            s.cable_length,
+                            s.payout_rate,
+                            s.seabed_present ? s.vehicle_altitude : blank,  // blank without a seabed
+                            static_cast<double>(s.contacts),
+                            s.depth_setpoint ? *s.depth_setpoint : blank,  // blank without an autopilot
+                            s.tension_ship_range.min,
+                            s.tension_ship_range.max,
+                            s.tension_vehicle_range.min,
+                            s.tension_vehicle_range.max,
+                            static_cast<double>(s.snap_count),
+                            s.max_strain };
   for (const BodyOutput& b : s.bodies)
   {
-    row << ',';
-    if (b.joint >= 0)  // blank once a parting took it off the vehicle side
-      row << b.p_W.x() << ',' << b.p_W.y() << ',' << b.depth << ',' << b.tension_above.norm() << ','
-          << b.tension_below.norm();
-    else
-      row << ",,,,";
+    const bool on = b.joint >= 0;  // blank once a parting took it off the vehicle side
+    for (double x : { b.p_W.x(), b.p_W.y(), b.depth, b.tension_above.norm(), b.tension_below.norm() })
+      v.push_back(on ? x : blank);
+  }
+  return v;
+}
+
+std::string timeseriesRow(const TowSnapshot& s, int precision)
+{
+  std::ostringstream row;
+  row.precision(precision);
+  const std::vector<double> values = timeseriesValues(s);
+  for (size_t i = 0; i < values.size(); ++i)
+  {
+    if (i > 0)
+      row << ',';
+    if (!std::isnan(values[i]))
+      row << values[i];
   }
   return row.str();
 }
@@ -75,10 +106,10 @@ std::string eventsRows(const BatchResult& result)
   return rows.str();
 }
 
-std::string shapesRows(const TowSnapshot& s, bool sections)
+std::string shapesRows(const TowSnapshot& s, bool sections, int precision)
 {
   std::ostringstream rows;
-  rows.precision(10);
+  rows.precision(precision);
   for (Eigen::Index j = 0; j < s.joints.cols(); ++j)
   {
     rows << s.t << ',' << j + 1 << ',' << s.joints(0, j) << ',' << s.joints(1, j) << ',' << s.joints(2, j) << ','
@@ -94,7 +125,7 @@ std::string shapesRows(const TowSnapshot& s, bool sections)
 namespace
 {
 // The run from the scenario's saved state; returns the index of its first output.
-long restoreInitialState(const Scenario& sc, const ShipHistory& ship, TowRun& run, BatchResult& result)
+long restoreInitialState(const Scenario& sc, const ShipHistory& ship, TowRun& run, std::string& warning)
 {
   RunState state = readRunState(sc.initial.path);
   if (!sc.initial.any_configuration)
@@ -114,7 +145,7 @@ long restoreInitialState(const Scenario& sc, const ShipHistory& ship, TowRun& ru
     std::ostringstream os;
     os << "initial_state: the state was saved with the tow point " << moved << " m away and the heading " << turned
        << " rad off this scenario's ship: placed behind it at t = " << t << " s";
-    result.start_warning = os.str();
+    warning = os.str();
   }
   run.restore(state);
   return static_cast<long>(std::ceil(t / sc.output_interval - 1e-9));
@@ -153,29 +184,38 @@ AutopilotLoop autopilotLoop(const Scenario& sc)
 }
 }  // namespace
 
-void runScenario(const Scenario& sc, std::ostream& series, std::ostream& shapes, BatchResult& result,
-                 const std::function<void(double t)>& progress, const SaveStateSink& save_state)
+ScenarioRun startScenario(const Scenario& sc)
 {
-  auto ship = std::make_shared<ShipHistory>(buildShipPath(sc));
-  TowRun run(sc.config, ship, sc.initial);
-  run.schedule(sc.commands);
+  ScenarioRun r;
+  r.ship = std::make_shared<ShipHistory>(buildShipPath(sc));
+  r.run = std::make_unique<TowRun>(sc.config, r.ship, sc.initial);
+  r.run->schedule(sc.commands);
   if (sc.autopilot.enabled)
-    run.setAutopilot(autopilotLoop(sc));
-  result = BatchResult();
-  long first = 0;
-  if (sc.initial.type == InitialShape::Type::kFile)
+    r.run->setAutopilot(autopilotLoop(sc));
+  if (sc.initial.type != InitialShape::Type::kFile)
   {
-    try
-    {
-      first = restoreInitialState(sc, *ship, run, result);
-    }
-    catch (const std::exception& e)
-    {
-      throw BadInitialState("initial_state.path " + sc.initial.path + ": " + e.what());
-    }
+    r.start_warning = r.run->start(0.0);
+    return r;
   }
-  else
-    result.start_warning = run.start(0.0);
+  try
+  {
+    r.first_output = restoreInitialState(sc, *r.ship, *r.run, r.start_warning);
+  }
+  catch (const std::exception& e)
+  {
+    throw BadInitialState("initial_state.path " + sc.initial.path + ": " + e.what());
+  }
+  return r;
+}
+
+void runScenario(const Scenario& sc, std::ostream& series, std::ostream& shapes, BatchResult& result,
+                 const std::function<void(double t)>& progress, const SaveStateSink& save_state, int precision)
+{
+  result = BatchResult();
+  ScenarioRun started = startScenario(sc);
+  TowRun& run = *started.run;
+  result.start_warning = started.start_warning;
+  const long first = started.first_output;
 
   const bool sections = !sc.config.sections.empty();
   series << timeseriesHeader(sc.config.bodies.size()) << '\n';
@@ -197,9 +237,9 @@ void runScenario(const Scenario& sc, std::ostream& series, std::ostream& shapes,
       }
     const TowSnapshot s = run.snapshot();
     result.parting = s.parting;
-    series << timeseriesRow(s) << '\n';
+    series << timeseriesRow(s, precision) << '\n';
     if (i % shapes_every == 0 || i == outputs)
-      shapes << shapesRows(s, sections);
+      shapes << shapesRows(s, sections, precision);
     result.t_reached = t;
     result.rows = i - first + 1;
     if (progress)

@@ -45,6 +45,25 @@ void payOutTo(SimulationConfig& config, double cable_out)
   config.cable.length = cable_out;
 }
 
+TowSnapshot steadyTow(const SimulationConfig& config, double speed, double cable_out, const Eigen::Vector3d& current_W)
+{
+  SimulationConfig c = config;
+  payOutTo(c, cable_out);
+  c.environment.current_W = current_W;
+  c.environment.waves = WaveParams();         // the steady tow is a calm-water one
+  c.winch.enabled = false;                    // the chart's lengths are the cable out, whatever the winch's limits
+  c.seabed.type = SeabedParams::Type::kNone;  // the steady tow ignores the bottom
+  auto ship = std::make_shared<ShipHistory>(1.0, 8);
+  for (int k = -2; k <= 2; ++k)
+    ship->add(k, Eigen::Vector3d(speed * k, 0.0, 0.0), Eigen::Vector3d(speed, 0.0, 0.0),
+              ShipPose{ speed * k, 0.0, 0.0, speed });
+  TowRun run(c, ship, InitialShape());
+  const std::string warning = run.start(0.0);
+  if (!warning.empty())
+    throw std::runtime_error(warning);
+  return run.snapshot();
+}
+
 ChartPoint chartPoint(const SimulationConfig& config, double speed, double cable_out, const Eigen::Vector3d& current_W)
 {
   ChartPoint p;
@@ -55,24 +74,7 @@ ChartPoint chartPoint(const SimulationConfig& config, double speed, double cable
   p.depth = p.layback = p.tension_ship = p.tension_vehicle = p.ship_angle = p.max_tension = nan;
   try
   {
-    SimulationConfig c = config;
-    payOutTo(c, cable_out);
-    c.environment.current_W = current_W;
-    c.environment.waves = WaveParams();         // the steady tow is a calm-water one
-    c.winch.enabled = false;                    // the chart's lengths are the cable out, whatever the winch's limits
-    c.seabed.type = SeabedParams::Type::kNone;  // the steady tow ignores the bottom
-    auto ship = std::make_shared<ShipHistory>(1.0, 8);
-    for (int k = -2; k <= 2; ++k)
-      ship->add(k, Eigen::Vector3d(speed * k, 0.0, 0.0), Eigen::Vector3d(speed, 0.0, 0.0),
-                ShipPose{ speed * k, 0.0, 0.0, speed });
-    TowRun run(c, ship, InitialShape());
-    const std::string warning = run.start(0.0);
-    if (!warning.empty())
-    {
-      p.error = warning;
-      return p;
-    }
-    const TowSnapshot s = run.snapshot();
+    const TowSnapshot s = steadyTow(config, speed, cable_out, current_W);
     p.converged = true;
     p.depth = s.depth;
     p.layback = s.layback;

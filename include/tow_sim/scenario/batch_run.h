@@ -4,10 +4,12 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <optional>
 #include <ostream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "tow_sim/core/run/tow_run.h"
 #include "tow_sim/scenario/scenario.h"
@@ -18,10 +20,14 @@ namespace tow_sim
 // column with cable sections) (docs/tools.md, "Output files").
 std::string timeseriesHeader(size_t bodies = 0);
 std::string shapesHeader(bool sections = false);
-// One row of timeseries.csv for a snapshot (no line break); blank cells as documented.
-std::string timeseriesRow(const TowSnapshot& s);
+// The values of timeseries.csv's row for a snapshot, in the header's order; NaN for a blank cell (no seabed,
+// no autopilot, a body a parting took off the vehicle side). The Python module's series are these.
+std::vector<double> timeseriesValues(const TowSnapshot& s);
+// One row of timeseries.csv for a snapshot (no line break), numbers to `precision` significant digits;
+// blank cells as documented.
+std::string timeseriesRow(const TowSnapshot& s, int precision = 10);
 // The rows of shapes.csv for a snapshot: one per joint x_1 .. x_{nu+2}, each ending in a line break.
-std::string shapesRows(const TowSnapshot& s, bool sections = false);
+std::string shapesRows(const TowSnapshot& s, bool sections = false, int precision = 10);
 
 struct BatchResult
 {
@@ -45,12 +51,27 @@ std::string eventsRows(const BatchResult& result);
 // A state saved with the ship elsewhere (another scenario's, the node's) is placed behind this scenario's ship
 // at its time (relocate(), said in start_warning). A state that cannot be read or does not fit the run throws
 // BadInitialState.
+// `precision`: significant digits of the CSV's numbers (tow_sim_batch --precision).
 using SaveStateSink = std::function<void(double t, const RunState& state)>;
 struct BadInitialState : std::invalid_argument
 {
   using std::invalid_argument::invalid_argument;
 };
 void runScenario(const Scenario& scenario, std::ostream& series, std::ostream& shapes, BatchResult& result,
-                 const std::function<void(double t)>& progress = {}, const SaveStateSink& save_state = {});
+                 const std::function<void(double t)>& progress = {}, const SaveStateSink& save_state = {},
+                 int precision = 10);
+
+// The scenario's run as runScenario starts it (the Python module's Run too): the scripted ship sampled
+// over the scenario's duration, the run with its commands and autopilot, started at t = 0 by the initial
+// shape or restored from the scenario's saved state (throws BadInitialState for one that cannot be read
+// or does not fit).
+struct ScenarioRun
+{
+  std::shared_ptr<ShipHistory> ship;
+  std::unique_ptr<TowRun> run;
+  long first_output = 0;      // the index of the first output time (after a saved state's time)
+  std::string start_warning;  // the initial shape's fallback, or the saved state's relocation
+};
+ScenarioRun startScenario(const Scenario& scenario);
 
 }  // namespace tow_sim

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "tow_sim/config/config.h"
+#include "tow_sim/core/run/tow_run.h"
 
 namespace tow_sim
 {
@@ -32,6 +33,11 @@ struct ChartPoint
 // hauled in to it, in segments of its length (at least one), the bodies aft of it moving with the cable. Throws
 // std::invalid_argument for a cable out not longer than the sections aft of the first, or a body inside it.
 void payOutTo(SimulationConfig& config, double cable_out);
+
+// The steady tow of `config` with cable_out [m] of cable (as chartPoint below) as the tow run starts it: its
+// snapshot at t = 0. Throws std::invalid_argument for a cable out payOutTo refuses or a configuration the run
+// refuses, std::runtime_error when no equilibrium was found (the reason in what()).
+TowSnapshot steadyTow(const SimulationConfig& config, double speed, double cable_out, const Eigen::Vector3d& current_W);
 
 // The steady tow of `config` with cable_out [m] of cable (segments of the configuration's length, at least
 // one), the ship at speed [m/s] along +x and the uniform current current_W [m/s] (world), the tow point
