@@ -184,9 +184,9 @@ AutopilotLoop autopilotLoop(const Scenario& sc)
 }
 }  // namespace
 
-ScenarioRun startScenario(const Scenario& sc)
+StartedScenario startScenario(const Scenario& sc)
 {
-  ScenarioRun r;
+  StartedScenario r;
   r.ship = std::make_shared<ShipHistory>(buildShipPath(sc));
   r.run = std::make_unique<TowRun>(sc.config, r.ship, sc.initial);
   r.run->schedule(sc.commands);
@@ -212,7 +212,7 @@ void runScenario(const Scenario& sc, std::ostream& series, std::ostream& shapes,
                  const std::function<void(double t)>& progress, const SaveStateSink& save_state, int precision)
 {
   result = BatchResult();
-  ScenarioRun started = startScenario(sc);
+  StartedScenario started = startScenario(sc);
   TowRun& run = *started.run;
   result.start_warning = started.start_warning;
   const long first = started.first_output;

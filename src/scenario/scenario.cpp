@@ -376,7 +376,7 @@ void writeShip(YAML::Node ship, const Scenario& sc)
     return;  // the motion file replaces the manoeuvres
   for (const Manoeuvre& m : sc.manoeuvres)
   {
-    YAML::Node n;
+    YAML::Node n(YAML::NodeType::Map);  // a map already: writeParams fills a copy of the handle
     detail::writeParams(n, manoeuvreParams(), m);
     std::vector<double> points;
     for (const Eigen::Vector2d& p : m.points)
@@ -409,7 +409,7 @@ YAML::Node toYaml(const Scenario& sc)
   writeShip(root["ship"], sc);
   for (const CommandEvent& e : sc.commands)
   {
-    YAML::Node n;
+    YAML::Node n(YAML::NodeType::Map);
     detail::writeParams(n, commandParams(), e);
     root["commands"].push_back(n);
   }

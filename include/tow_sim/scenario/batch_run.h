@@ -65,13 +65,13 @@ void runScenario(const Scenario& scenario, std::ostream& series, std::ostream& s
 // over the scenario's duration, the run with its commands and autopilot, started at t = 0 by the initial
 // shape or restored from the scenario's saved state (throws BadInitialState for one that cannot be read
 // or does not fit).
-struct ScenarioRun
+struct StartedScenario
 {
   std::shared_ptr<ShipHistory> ship;
   std::unique_ptr<TowRun> run;
   long first_output = 0;      // the index of the first output time (after a saved state's time)
   std::string start_warning;  // the initial shape's fallback, or the saved state's relocation
 };
-ScenarioRun startScenario(const Scenario& scenario);
+StartedScenario startScenario(const Scenario& scenario);
 
 }  // namespace tow_sim
