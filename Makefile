@@ -55,7 +55,7 @@ SAN_SKIP := -Vacuum.ReleasedChainKeepsItsEnergy:BendingStiffness.ATautSpansFirst
 sanitize: deps
 	@echo "== core tests under AddressSanitizer + UndefinedBehaviorSanitizer"
 	@rm -rf $(SAN_DIR)/test_results && mkdir -p $(SAN_DIR)/test_results
-	cmake -S $(REPO) -B $(SAN_DIR) -DTOW_SIM_CORE_ONLY=ON -DCMAKE_BUILD_TYPE=Sanitize '-DTOW_SIM_CTEST_EXCLUDE=test_batch;test_sweep' \
+	cmake -S $(REPO) -B $(SAN_DIR) -DTOW_SIM_CORE_ONLY=ON -DTOW_SIM_PYTHON=OFF -DCMAKE_BUILD_TYPE=Sanitize '-DTOW_SIM_CTEST_EXCLUDE=test_batch;test_sweep' \
 	  -DTOW_SIM_CTEST_STEPPER_RUNS=OFF "-DCMAKE_CXX_FLAGS=$(SAN_FLAGS) $(SAN_OPT)" "-DCMAKE_EXE_LINKER_FLAGS=$(SAN_FLAGS)" \
 	  > $(SAN_DIR).configure.log
 	cmake --build $(SAN_DIR) -j$(JOBS) > $(SAN_DIR).build.log 2>&1 || { tail -n 40 $(SAN_DIR).build.log; exit 1; }
@@ -90,7 +90,7 @@ accuracy: build
 # at the sanitizer stage's -O1 -g1 (it compiled in 5 min at -O2 -g in the last CI).
 fuzz: deps
 	@mkdir -p $(FUZZ_DIR) && rm -rf $(FUZZ_DIR)/test_results && mkdir -p $(FUZZ_DIR)/test_results
-	cmake -S $(REPO) -B $(FUZZ_DIR) -DTOW_SIM_CORE_ONLY=ON -DCMAKE_BUILD_TYPE=Sanitize \
+	cmake -S $(REPO) -B $(FUZZ_DIR) -DTOW_SIM_CORE_ONLY=ON -DTOW_SIM_PYTHON=OFF -DCMAKE_BUILD_TYPE=Sanitize \
 	  -DCMAKE_CXX_COMPILER=clang++ "-DCMAKE_CXX_FLAGS=$(SAN_FLAGS) $(SAN_OPT)" > $(FUZZ_DIR).configure.log
 	cmake --build $(FUZZ_DIR) -j$(JOBS) --target $(FUZZ_TARGETS:%=fuzz_%) > $(FUZZ_DIR).build.log 2>&1 \
 	  || { tail -n 40 $(FUZZ_DIR).build.log; exit 1; }
@@ -123,6 +123,8 @@ docs: build
 
 bench: build
 	@for b in $(WS)/devel/lib/tow_sim/bench_*; do echo "== $$b"; $$b; done
+	@echo "== bench/bench_python.py"
+	@source $(WS)/devel/setup.bash && TOW_SIM_BIN=$(WS)/devel/lib/tow_sim /usr/bin/python3 $(REPO)/bench/bench_python.py
 
 clean:
 	rm -rf $(WS)

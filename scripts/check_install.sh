@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The install space alone: with only INSTALL/setup.bash sourced in an empty environment (no devel space,
 # no source tree on the package path), the batch runner, tow_sim_plot, tow_sim_chart (drawing its charts
-# with the installed tow_sim_plot), tow_sim_sweep and the demo (headless, on a master of its own) run.
+# with the installed tow_sim_plot), tow_sim_sweep, the Python module and the demo (headless, on a master of
+# its own) run.
 # Usage: scripts/check_install.sh INSTALL_DIR      (make test: after catkin_make install)
 set -euo pipefail
 install="$(realpath "${1:?usage: check_install.sh INSTALL_DIR}")"
@@ -32,6 +33,13 @@ ls chart/*.png
 echo "== tow_sim_sweep"
 printf "base: %s\ngrid:\n  cable.segments: [20, 30]\n" "$share/scenarios/heave_snap.yaml" > sweep.yaml
 rosrun tow_sim tow_sim_sweep sweep.yaml --out sweep --jobs 2 2>/dev/null
+echo "== the Python module"
+python3 -c "
+import tow_sim, tow_sim.msg
+assert tow_sim.__file__.startswith(\"$1/\"), tow_sim.__file__
+eq = tow_sim.steady_tow(tow_sim.load_config(\"$share/config/tow_sim.yaml\"), speed=2.0, cable_out=300.0)
+print(\"tow_sim from\", tow_sim.__file__, \"- steady tow at 2 m/s on 300 m: depth %.1f m\" % eq.depth)
+"
 echo "== the demo, headless"
 roslaunch tow_sim tow_sim.launch rviz:=false print_status:=false > demo.log 2>&1 &
 demo=$!

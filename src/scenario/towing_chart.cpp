@@ -47,6 +47,13 @@ void payOutTo(SimulationConfig& config, double cable_out)
 
 TowSnapshot steadyTow(const SimulationConfig& config, double speed, double cable_out, const Eigen::Vector3d& current_W)
 {
+  if (!std::isfinite(speed) || !(cable_out > 0.0 && cable_out <= 1e5) || !current_W.allFinite())
+  {
+    std::ostringstream os;
+    os << "steady tow at speed " << speed << " m/s, cable out " << cable_out << " m, current (" << current_W.transpose()
+       << ") m/s: the speed and current must be finite, the cable out in (0, 100000] m";
+    throw std::invalid_argument(os.str());
+  }
   SimulationConfig c = config;
   payOutTo(c, cable_out);
   c.environment.current_W = current_W;

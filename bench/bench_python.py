@@ -1,0 +1,90 @@
+#!/usr/bin/env python3
+"""What calling the core through the Python module costs (docs/benchmarks.md, "The Python module").
+
+    bench_python.py [--repeats N]      (make bench; the workspace sourced, tow_sim_batch on PATH or TOW_SIM_BIN)
+
+1. A 600 s run of scenarios/turn_180.yaml at nu = 100, as whole processes: tow_sim_batch (writing its CSVs)
+   against python3 running tow_sim.Run(scenario).run(600) (the interpreter's start and the import included).
+2. Short steps: 60 s in 0.05 s steps driven from Python (advance_to and snapshot per step) against the same steps
+   in the module's C++ loop (Run.run), the difference per step.
+Prints the medians and their ratio with the commit and the date, for the docs.
+"""
+import argparse
+import datetime
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+import yaml
+
+import tow_sim
+
+SOURCE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
+
+
+def median_seconds(command, repeats):
+    times = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        subprocess.run(command, check=True, capture_output=True)
+        times.append(time.perf_counter() - start)
+    return statistics.median(times)
+
+
+def scenario_at_nu_100(folder):
+    doc = yaml.safe_load(tow_sim.load_scenario(os.path.join(SOURCE, "scenarios", "turn_180.yaml")).to_yaml())
+    doc["cable"]["segments"] = 100
+    path = os.path.join(folder, "turn_180_nu100.yaml")
+    with open(path, "w") as f:
+        yaml.safe_dump(doc, f)
+    return path
+
+
+def per_call_cost(scenario, step=0.05, until=60.0, repeats=5):
+    """[s] per step of `step` driven from Python (advance_to, then snapshot) over the same steps run by the C++
+    loop of Run.run(every=step) (advanceTo, snapshot and the row's values in C++): what calling adds per step."""
+    sc = tow_sim.load_scenario(scenario)
+    steps = round(until / step)
+    python_loop, cpp_loop = [], []
+    for _ in range(repeats):
+        run = tow_sim.Run(sc)
+        start = time.perf_counter()
+        for k in range(steps + 1):
+            run.advance_to(k * step)
+            run.snapshot()
+        python_loop.append(time.perf_counter() - start)
+        run = tow_sim.Run(sc)
+        start = time.perf_counter()
+        run.run(until=until, every=step)
+        cpp_loop.append(time.perf_counter() - start)
+    return (statistics.median(python_loop) - statistics.median(cpp_loop)) / (steps + 1), statistics.median(cpp_loop)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeats", type=int, default=5)
+    args = parser.parse_args()
+    batch = os.path.join(os.environ.get("TOW_SIM_BIN", ""), "tow_sim_batch")
+    commit = subprocess.run(["git", "-C", SOURCE, "rev-parse", "--short", "HEAD"], capture_output=True, text=True)
+    print(f"bench_python: commit {commit.stdout.strip() or '?'}, {datetime.date.today()}, {os.cpu_count()} cores")
+    with tempfile.TemporaryDirectory() as folder:
+        scenario = scenario_at_nu_100(folder)
+        t_batch = median_seconds([batch, "--scenario", scenario, "--out", os.path.join(folder, "out")], args.repeats)
+        script = f"import tow_sim; tow_sim.Run(tow_sim.load_scenario({scenario!r})).run(until=600.0, every=1.0)"
+        t_python = median_seconds([sys.executable, "-c", script], args.repeats)
+        print(f"600 s of turn_180 at nu = 100, whole processes (median of {args.repeats}):")
+        print(f"  tow_sim_batch {t_batch:.3f} s, python3 + tow_sim.Run.run {t_python:.3f} s: "
+              f"ratio {t_python / t_batch:.3f}")
+        t_import = median_seconds([sys.executable, "-c", "import tow_sim, numpy"], args.repeats)
+        print(f"  of which python3 -c 'import tow_sim, numpy' {t_import:.3f} s; without it, ratio "
+              f"{(t_python - t_import) / t_batch:.3f}")
+        extra, cpp = per_call_cost(scenario)
+        print(f"60 s in 0.05 s steps: the C++ loop (Run.run) {cpp:.3f} s; from Python (advance_to + snapshot per "
+              f"step) {extra * 1e6:.1f} us more per step")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,173 @@
+// tow_sim._core: the ROS-free core from Python (docs/python.md). The package tow_sim (python/tow_sim) imports it.
+#include <pybind11/eigen.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <sstream>
+#include <stdexcept>
+
+#include "convert.h"
+#include "python_run.h"
+#include "tow_sim/config/config.h"
+#include "tow_sim/scenario/batch_run.h"
+#include "tow_sim/scenario/scenario.h"
+#include "tow_sim/scenario/towing_chart.h"
+
+namespace py = pybind11;
+using namespace pybind11::literals;
+
+namespace tow_sim::python
+{
+namespace
+{
+std::string yamlText(const YAML::Node& node)
+{
+  YAML::Emitter out;
+  out.SetDoublePrecision(17);
+  out << node;
+  return out.c_str();
+}
+
+// As a configuration file with this content: loadConfigFile's checks, top-level keys included.
+SimulationConfig configFrom(const YAML::Node& root, const std::string& base_dir)
+{
+  SimulationConfig config = loadConfig(root, "", base_dir);
+  requireKnownKeys(root, "", configurationFileKeys());
+  return config;
+}
+
+void bindConfig(py::module_& m)
+{
+  py::class_<SimulationConfig>(m, "Config", "A validated configuration (config/tow_sim.yaml's keys).")
+      .def_static(
+          "from_dict",
+          [](const py::dict& d, const std::string& base_dir) { return configFrom(toYamlNode(d, ""), base_dir); }, "d"_a,
+          "base_dir"_a = "",
+          "The configuration a YAML file with this content would give (same checks, same messages); relative file "
+          "names from base_dir.")
+      .def_static(
+          "from_yaml",
+          [](const std::string& text, const std::string& base_dir)
+          {
+            YAML::Node root;
+            try
+            {
+              root = YAML::Load(text);
+            }
+            catch (const YAML::Exception& e)
+            {
+              throw std::invalid_argument(std::string("cannot read the YAML text: ") + e.what());
+            }
+            return configFrom(root, base_dir);
+          },
+          "text"_a, "base_dir"_a = "", "As from_dict, from YAML text.")
+      .def(
+          "to_yaml", [](const SimulationConfig& c) { return yamlText(toYaml(c)); },
+          "Every key, defaults filled in, as YAML text.")
+      .def("keys", &configurationKeys, "Every key and its value as text, flattened: {'cable.length': '500', ...}.")
+      .def_property_readonly(
+          "cable_length", [](const SimulationConfig& c) { return c.cable.length; }, "[m]")
+      .def_property_readonly("segments", [](const SimulationConfig& c) { return c.cable.segments; })
+      .def("__repr__", [](const SimulationConfig& c)
+           { return "<tow_sim.Config: " + std::to_string(c.cable.length) + " m of cable>"; });
+  m.def("load_config", &loadConfigFile, "path"_a, "A configuration file (ValueError naming the key on a bad one).");
+}
+
+void bindScenario(py::module_& m)
+{
+  py::class_<Scenario>(m, "Scenario", "A batch scenario: a configuration, a scripted ship, commands and timing.")
+      .def_static(
+          "from_dict",
+          [](const py::dict& d, const std::string& base_dir) { return loadScenario(toYamlNode(d, ""), base_dir); },
+          "d"_a, "base_dir"_a = "", "The scenario a YAML file with this content would give.")
+      .def("to_yaml", [](const Scenario& s) { return yamlText(toYaml(s)); })
+      .def_readonly("config", &Scenario::config)
+      .def_readonly("duration", &Scenario::duration, "[s]")
+      .def_readonly("output_interval", &Scenario::output_interval, "[s]");
+  m.def("load_scenario", &loadScenarioFile, "path"_a, "A scenario file (as tow_sim_batch --scenario reads it).");
+}
+
+void bindSteadyTow(py::module_& m)
+{
+  m.def(
+      "steady_tow",
+      [](const SimulationConfig& c, double speed, std::optional<double> cable_out, const py::object& current)
+      {
+        const Eigen::Vector3d current_W = vector3(current, "current");
+        py::gil_scoped_release released;
+        return steadyTow(c, speed, cable_out.value_or(c.cable.length), current_W);
+      },
+      "config"_a, "speed"_a, "cable_out"_a = py::none(), "current"_a = py::make_tuple(0.0, 0.0, 0.0),
+      "The steady tow at speed [m/s] along +x with cable_out [m] (default: the configuration's) in a uniform current "
+      "[m/s], as tow_sim_chart and a run's start compute it: a Snapshot at t = 0. RuntimeError when none is found.");
+}
+
+void bindChart(py::module_& m)
+{
+  m.def(
+      "towing_chart",
+      [](const SimulationConfig& c, const std::vector<double>& speeds, const std::vector<double>& cable_outs,
+         const py::object& current)
+      {
+        const Eigen::Vector3d current_W = vector3(current, "current");
+        std::vector<ChartPoint> points;
+        {
+          py::gil_scoped_release released;
+          points = towingChart(c, speeds, cable_outs, current_W);
+        }
+        std::vector<std::vector<double>> rows;
+        py::list errors;
+        for (const ChartPoint& p : points)
+        {
+          rows.push_back({ p.speed, p.cable_out, p.current, p.depth, p.layback, p.tension_ship, p.tension_vehicle,
+                           p.ship_angle, p.max_tension, p.converged ? 1.0 : 0.0 });
+          errors.append(p.error);
+        }
+        py::dict chart = seriesDict(chartHeader(), rows);
+        chart["converged"] = py::object(chart["converged"]).attr("astype")("bool");
+        chart["error"] = errors;
+        return chart;
+      },
+      "config"_a, "speeds"_a, "cable_outs"_a, "current"_a = py::make_tuple(0.0, 0.0, 0.0),
+      "chart.csv's columns as arrays (speed varying fastest), NaN where no equilibrium was found and 'error' says "
+      "why.");
+}
+
+void bindPlan(py::module_& m)
+{
+  m.def(
+      "plan_cable_out",
+      [](const SimulationConfig& c, double speed, double target_depth, const py::object& current,
+         std::optional<double> min_length, std::optional<double> max_length)
+      {
+        const Eigen::Vector3d current_W = vector3(current, "current");
+        CableOutPlan plan;
+        {
+          py::gil_scoped_release released;
+          plan = planCableOut(c, target_depth, speed, current_W, min_length.value_or(c.winch.min_length),
+                              max_length.value_or(c.winch.max_length));
+        }
+        return py::dict("reachable"_a = plan.reachable, "cable_out"_a = plan.cable_out, "depth"_a = plan.point.depth,
+                        "layback"_a = plan.point.layback, "tension_ship"_a = plan.point.tension_ship,
+                        "reason"_a = plan.reason);
+      },
+      "config"_a, "speed"_a, "target_depth"_a, "current"_a = py::make_tuple(0.0, 0.0, 0.0), "min_length"_a = py::none(),
+      "max_length"_a = py::none(),
+      "The cable out [m] that puts the vehicle at target_depth [m] at speed [m/s] (tow_sim_chart --target-depth), "
+      "between the winch's limits unless given.");
+}
+}  // namespace
+}  // namespace tow_sim::python
+
+PYBIND11_MODULE(_core, m)
+{
+  m.doc() = "tow_sim's ROS-free core: configurations, scenarios, runs, steady tows and towing charts.";
+  tow_sim::python::bindConfig(m);
+  tow_sim::python::bindScenario(m);
+  tow_sim::python::bindSnapshot(m);
+  tow_sim::python::bindRun(m);
+  tow_sim::python::bindSteadyTow(m);
+  tow_sim::python::bindChart(m);
+  tow_sim::python::bindPlan(m);
+}
