@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The install space alone: with only INSTALL/setup.bash sourced in an empty environment (no devel space,
-# no source tree on the package path), the batch runner, tow_sim_plot, tow_sim_chart (drawing its charts
-# with the installed tow_sim_plot), tow_sim_sweep, the Python module and the demo (headless, on a master of
-# its own) run.
+# no source tree on the package path), the batch runner, tow_sim_fatigue, tow_sim_plot, tow_sim_chart
+# (drawing its charts with the installed tow_sim_plot), tow_sim_sweep, the Python module and the demo
+# (headless, on a master of its own) run.
 # Usage: scripts/check_install.sh INSTALL_DIR      (make test: after catkin_make install)
 set -euo pipefail
 install="$(realpath "${1:?usage: check_install.sh INSTALL_DIR}")"
@@ -23,6 +23,8 @@ esac
 cd "$HOME"
 echo "== tow_sim_batch"
 rosrun tow_sim tow_sim_batch --scenario "$share/scenarios/heave_snap.yaml" --out run | tail -n 2
+echo "== tow_sim_fatigue"
+rosrun tow_sim tow_sim_fatigue run --breaking-load 1e5
 echo "== tow_sim_plot"
 rosrun tow_sim tow_sim_plot run | tail -n 2
 ls run/*.png
