@@ -157,6 +157,29 @@ void bindPlan(py::module_& m)
       "The cable out [m] that puts the vehicle at target_depth [m] at speed [m/s] (tow_sim_chart --target-depth), "
       "between the winch's limits unless given.");
 }
+void bindModes(py::module_& m)
+{
+  m.def(
+      "modes",
+      [](const SimulationConfig& c, double speed, std::optional<double> cable_out, const py::object& current)
+      {
+        const Eigen::Vector3d current_W = vector3(current, "current");
+        std::vector<Mode> modes;
+        {
+          py::gil_scoped_release released;
+          modes = steadyTowModes(c, speed, cable_out.value_or(c.cable.length), current_W);
+        }
+        py::list out;
+        for (const Mode& mode : modes)
+          out.append(py::dict("period"_a = mode.period, "frequency"_a = mode.frequency,
+                              "damping_ratio"_a = mode.damping_ratio, "dominant"_a = mode.dominant,
+                              "shape"_a = Eigen::MatrixX3d(mode.shape.transpose())));
+        return out;
+      },
+      "config"_a, "speed"_a, "cable_out"_a = py::none(), "current"_a = py::make_tuple(0.0, 0.0, 0.0),
+      "The natural modes about the steady tow (tow_sim_modes), in ascending natural frequency: dicts of period [s] "
+      "(inf: decays without oscillating), frequency [rad/s], damping_ratio, dominant and shape ((nu + 1, 3) [m]).");
+}
 }  // namespace
 }  // namespace tow_sim::python
 
@@ -170,4 +193,5 @@ PYBIND11_MODULE(_core, m)
   tow_sim::python::bindSteadyTow(m);
   tow_sim::python::bindChart(m);
   tow_sim::python::bindPlan(m);
+  tow_sim::python::bindModes(m);
 }

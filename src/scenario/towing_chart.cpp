@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "tow_sim/core/analysis/modes.h"
 #include "tow_sim/core/constants.h"
 #include "tow_sim/core/io/numeric_csv.h"
 #include "tow_sim/core/run/tow_run.h"
@@ -45,7 +46,8 @@ void payOutTo(SimulationConfig& config, double cable_out)
   config.cable.length = cable_out;
 }
 
-TowSnapshot steadyTow(const SimulationConfig& config, double speed, double cable_out, const Eigen::Vector3d& current_W)
+std::unique_ptr<TowRun> steadyTowRun(const SimulationConfig& config, double speed, double cable_out,
+                                     const Eigen::Vector3d& current_W)
 {
   if (!std::isfinite(speed) || !(cable_out > 0.0 && cable_out <= 1e5) || !current_W.allFinite())
   {
@@ -64,11 +66,29 @@ TowSnapshot steadyTow(const SimulationConfig& config, double speed, double cable
   for (int k = -2; k <= 2; ++k)
     ship->add(k, Eigen::Vector3d(speed * k, 0.0, 0.0), Eigen::Vector3d(speed, 0.0, 0.0),
               ShipPose{ speed * k, 0.0, 0.0, speed });
-  TowRun run(c, ship, InitialShape());
-  const std::string warning = run.start(0.0);
+  auto run = std::make_unique<TowRun>(c, ship, InitialShape());
+  const std::string warning = run->start(0.0);
   if (!warning.empty())
     throw std::runtime_error(warning);
-  return run.snapshot();
+  return run;
+}
+
+TowSnapshot steadyTow(const SimulationConfig& config, double speed, double cable_out, const Eigen::Vector3d& current_W)
+{
+  return steadyTowRun(config, speed, cable_out, current_W)->snapshot();
+}
+
+std::vector<Mode> steadyTowModes(const SimulationConfig& config, double speed, double cable_out,
+                                 const Eigen::Vector3d& current_W)
+{
+  if (config.cable.elastic())
+    throw std::invalid_argument(
+        "natural modes: the rigid cable only (cable.axial_stiffness: 0); an elastic "
+        "segment's stretch is not one of the coordinates");
+  const std::unique_ptr<TowRun> run = steadyTowRun(config, speed, cable_out, current_W);
+  const Simulator& sim = run->simulator();
+  const ChainState state = sim.state();
+  return naturalModes(run->model(), sim.geometry(), sim.data(), sim.time(), sim.firstJoint(), state.x, state.v);
 }
 
 ChartPoint chartPoint(const SimulationConfig& config, double speed, double cable_out, const Eigen::Vector3d& current_W)

@@ -229,3 +229,21 @@ def test_bad_values_are_refused_naming_them_and_the_run_goes_on():
     assert list(chart["converged"]) == [False, True] and "must be finite" in chart["error"][0]
     run.advance_to(12.0)  # the run went on from its last good state
     assert run.snapshot().t == pytest.approx(12.0) and np.isfinite(run.snapshot().joints).all()
+
+
+def test_the_modes_are_tow_sim_modes(tmp_path):
+    config = tmp_path / "c.yaml"
+    config.write_text("cable: {length: 200.0, segments: 40}\n")
+    subprocess.run([os.path.join(BIN, "tow_sim_modes"), "--config", str(config), "--speed", "0.2", "--count", "12",
+                    "--out", str(tmp_path)], check=True, capture_output=True)
+    with open(tmp_path / "modes.csv") as f:
+        want = list(csv.DictReader(f))
+    got = tow_sim.modes(tow_sim.load_config(str(config)), speed=0.2)
+    # 82 angles: one mode per complex pair of eigenvalues, one per real eigenvalue (a mode that only decays)
+    assert 2 * 41 <= len(got) <= 4 * 41 and got[0]["shape"].shape == (41, 3)
+    for row, mode in zip(want, got):
+        for key in ("period", "frequency", "damping_ratio"):
+            assert mode[key] == pytest.approx(float(row[key]), rel=1e-9), key
+        assert mode["dominant"] == row["dominant"]
+    yaw = next(m for m in got if m["dominant"] == "vehicle yaw")
+    assert 6.0 < yaw["period"] < 7.0 and 0.0 < yaw["damping_ratio"] < 0.1  # test_modes rings it in the time domain

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "tow_sim/config/config.h"
+#include "tow_sim/core/analysis/modes.h"
 #include "tow_sim/core/run/tow_run.h"
 
 namespace tow_sim
@@ -38,6 +39,10 @@ void payOutTo(SimulationConfig& config, double cable_out);
 // snapshot at t = 0. Throws std::invalid_argument for a cable out payOutTo refuses or a configuration the run
 // refuses, std::runtime_error when no equilibrium was found (the reason in what()).
 TowSnapshot steadyTow(const SimulationConfig& config, double speed, double cable_out, const Eigen::Vector3d& current_W);
+// The natural modes about that steady tow (modes.h; tow_sim_modes), in ascending natural frequency. Throws as
+// steadyTow, and std::invalid_argument for an elastic cable.
+std::vector<Mode> steadyTowModes(const SimulationConfig& config, double speed, double cable_out,
+                                 const Eigen::Vector3d& current_W);
 
 // The steady tow of `config` with cable_out [m] of cable (segments of the configuration's length, at least
 // one), the ship at speed [m/s] along +x and the uniform current current_W [m/s] (world), the tow point

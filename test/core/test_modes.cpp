@@ -1,0 +1,172 @@
+// Natural modes (modes.h) against closed forms: a uniform chain hanging in still water (Bessel's zeros, with
+// the added mass and the buoyancy) and a heavy body swinging on a light cable in vacuum (the two-degree-of-
+// freedom pendulum of a string and a rigid body).
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "chain_fixtures.h"
+#include "tow_sim/core/analysis/modes.h"
+#include "tow_sim/core/chain/chain_state.h"
+#include "tow_sim/core/constants.h"
+#include "tow_sim/scenario/towing_chart.h"
+
+namespace tow_sim
+{
+namespace
+{
+std::vector<Mode> hangingModes(const CableParams& cable, const EndElementParams& end, const Environment& env)
+{
+  const auto model = test::makeModel(cable, end, env);
+  const ChainState state =
+      straightChain(*model, Eigen::Vector3d::Zero(), -Eigen::Vector3d::UnitZ(), Eigen::Vector3d::Zero());
+  return naturalModes(*model, model->initialGeometry(), model->initialData(0.0), 0.0, ShipEndState(), state.x, state.v);
+}
+}  // namespace
+
+TEST(Modes, AChainHangingInStillWaterSwingsAtBesselsFrequenciesWithAddedMassAndBuoyancy)
+{
+  CableParams cable;
+  cable.segments = 80;
+  cable.length = 80.0;
+  cable.diameter = 0.05;
+  cable.mass_per_length = 4.0;
+  cable.added_mass_coefficient = 1.0;
+  cable.normal_drag_coefficient = 0.0;  // drag would damp the swing; its linear part is zero at rest anyway
+  cable.tangential_drag_coefficient = 0.0;
+  const EndElementParams end = test::endLikeSegment(cable);  // the 81st segment
+  Environment env;
+  const std::vector<Mode> modes = hangingModes(cable, end, env);
+  ASSERT_EQ(modes.size(), 2u * 81u);
+  // Transverse motion of a continuous chain: (mu + mu_a) y'' = d/dz (w z dy/dz), w = (mu - rho A) g.
+  const double area = 0.25 * kPi * cable.diameter * cable.diameter, L = 81.0;
+  const double w = (cable.mass_per_length - env.water_density * area) * env.gravity;
+  const double inertia = cable.mass_per_length + cable.added_mass_coefficient * env.water_density * area;
+  const double zeros[] = { 2.404825557695773, 5.520078110286311, 8.653727912911013 };
+  for (int k = 0; k < 3; ++k)
+  {
+    const double expected = 0.5 * zeros[k] * std::sqrt(w / (inertia * L));
+    // Each mode twice, in two planes (the vertical chain has no preferred one).
+    const double a = modes[2 * k].frequency, b = modes[2 * k + 1].frequency;
+    std::printf("hanging mode %d: %.6f and %.6f rad/s, Bessel %.6f rad/s (%.2e)\n", k + 1, a, b, expected,
+                a / expected - 1.0);
+    EXPECT_NEAR(a / expected, 1.0, 2e-3) << k;
+    EXPECT_NEAR(b / a, 1.0, 1e-9) << k;
+    EXPECT_NEAR(modes[2 * k].damping_ratio, 0.0, 1e-9) << k;
+    EXPECT_NEAR(2.0 * kPi / modes[2 * k].period, a, 1e-9 * a) << k;
+  }
+  // The first mode's shape: the largest displacement 1, at the tail; the joint below the tow point hardly moves.
+  const Eigen::Matrix3Xd& shape = modes[0].shape;
+  EXPECT_NEAR(shape.cwiseAbs().maxCoeff(), 1.0, 1e-9);
+  const Eigen::VectorXd moved = shape.colwise().norm();
+  EXPECT_EQ(std::max_element(moved.data(), moved.data() + moved.size()) - moved.data(), moved.size() - 1);
+  EXPECT_LT(moved(0), 0.05 * moved(moved.size() - 1));
+}
+
+TEST(Modes, AHeavyBodyOnALightCableSwingsAsTheTwoDegreeOfFreedomPendulum)
+{
+  CableParams cable;
+  cable.segments = 20;
+  cable.length = 10.0;
+  cable.mass_per_length = 1e-4;  // 1 g of cable under a 100 kg body: its mass moves the modes by ~1e-5
+  EndElementParams end;
+  end.mass = 100.0;
+  end.length = 1.0;
+  end.cg_from_bail = end.cb_from_bail = 0.5;
+  end.displaced_volume = 0.0;
+  end.transverse_inertia = 2.0;
+  Environment env;
+  env.water_density = 0.0;
+  const std::vector<Mode> modes = hangingModes(cable, end, env);
+  // The string of length L and the body (mass M, CG c below the bail, inertia I about it), by Lagrange:
+  // M = [[M L^2, M L c], [M L c, M c^2 + I]], K = diag(M g L, M g c).
+  const double M = end.mass, L = cable.length, c = end.cg_from_bail, I = *end.transverse_inertia, g = env.gravity;
+  Eigen::Matrix2d mass, stiffness;
+  mass << M * L * L, M * L * c, M * L * c, M * c * c + I;
+  stiffness << M * g * L, 0.0, 0.0, M * g * c;
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix2d> pendulum(stiffness, mass);
+  for (int k = 0; k < 2; ++k)
+  {
+    const double expected = std::sqrt(pendulum.eigenvalues()(k));
+    const double a = modes[2 * k].frequency, b = modes[2 * k + 1].frequency;
+    std::printf("pendulum mode %d: %.6f and %.6f rad/s, closed form %.6f rad/s (%.2e)\n", k + 1, a, b, expected,
+                a / expected - 1.0);
+    EXPECT_NEAR(a / expected, 1.0, 1e-4) << k;
+    EXPECT_NEAR(b / expected, 1.0, 1e-4) << k;
+  }
+  EXPECT_EQ(modes[2].dominant.rfind("vehicle", 0), 0u) << modes[2].dominant;  // the body's own swing
+  // The light cable's own modes are far above: a string of 1 g under the body's weight.
+  EXPECT_GT(modes[4].frequency, 20.0 * modes[2].frequency);
+}
+
+// The damping too, against the dynamics themselves: the steady tow at 0.2 m/s started with the vehicle turned
+// along its lightly damped yaw mode rings at that mode's period and decays at its damping ratio (dopri5 at 1e-9,
+// the successive peaks of the tail's sideways offset from the bail).
+TEST(Modes, TheSteadyTowsVehicleYawModeRingsAtItsPeriodAndDampingInAFreeDecay)
+{
+  SimulationConfig config;
+  config.cable.length = 200.0;
+  config.cable.segments = 40;
+  config.numerics.stepper = StepperType::kDopri5;
+  config.numerics.abs_tol = config.numerics.rel_tol = 1e-9;
+  const double speed = 0.2;
+  const std::vector<Mode> modes = steadyTowModes(config, speed, config.cable.length, Eigen::Vector3d::Zero());
+  const auto yaw_mode = std::find_if(
+      modes.begin(), modes.end(), [](const Mode& m) { return m.dominant == "vehicle yaw" && std::isfinite(m.period); });
+  ASSERT_NE(yaw_mode, modes.end());
+  ASSERT_LT(yaw_mode->damping_ratio, 0.2);  // lightly damped: several peaks to measure
+
+  const TowSnapshot eq = steadyTow(config, speed, config.cable.length, Eigen::Vector3d::Zero());
+  auto ship = std::make_shared<ShipHistory>(1.0, 200);
+  for (int k = -2; k <= 100; ++k)
+    ship->add(k, Eigen::Vector3d(speed * k, 0.0, 0.0), Eigen::Vector3d(speed, 0.0, 0.0),
+              ShipPose{ speed * k, 0.0, 0.0, speed });
+  InitialShape initial;
+  initial.type = InitialShape::Type::kPoints;
+  initial.points = eq.joints.rightCols(eq.joints.cols() - 1) + 0.005 * yaw_mode->shape;
+  TowRun run(config, ship, initial);
+  ASSERT_EQ(run.start(0.0), "");
+  std::vector<double> t, yaw;
+  for (int k = 0; k <= 1200; ++k)
+  {
+    run.advanceTo(0.05 * k);
+    t.push_back(0.05 * k);
+    const TowSnapshot s = run.snapshot();  // the tail's sideways offset from the bail (the yaw angle is ill-posed:
+    const Eigen::Index tail = s.joints.cols() - 1;  // the body hangs steeply at this speed)
+    yaw.push_back(s.joints(1, tail) - s.joints(1, tail - 1));
+  }
+  std::vector<double> peak_t, peak;
+  for (size_t i = 1; i + 1 < yaw.size(); ++i)
+    if (yaw[i] > yaw[i - 1] && yaw[i] >= yaw[i + 1] && yaw[i] > 0.0)
+    {
+      // the parabola through the three samples: its vertex
+      const double d = yaw[i - 1] - 2.0 * yaw[i] + yaw[i + 1], u = 0.5 * (yaw[i - 1] - yaw[i + 1]) / d;
+      peak_t.push_back(t[i] + u * 0.05);
+      peak.push_back(yaw[i] - 0.25 * (yaw[i - 1] - yaw[i + 1]) * u);
+    }
+  ASSERT_GE(peak.size(), 4u);
+  const double period = (peak_t[3] - peak_t[1]) / 2.0;  // from the second peak on: the faster modes have gone
+  const double delta = std::log(peak[1] / peak[3]) / 2.0;
+  const double zeta = delta / std::sqrt(4.0 * kPi * kPi + delta * delta);
+  std::printf("vehicle yaw mode: period %.4f s, damping ratio %.4f; free decay: %.4f s, %.4f\n", yaw_mode->period,
+              yaw_mode->damping_ratio, period, zeta);
+  // 5 mm at the tail: the swing's speed stays well under the flow's, whose drag the modes linearise (at 5 cm
+  // the quadratic drag already shifts the damping by 5 %).
+  EXPECT_NEAR(period / yaw_mode->period, 1.0, 5e-3);
+  EXPECT_NEAR(zeta / yaw_mode->damping_ratio, 1.0, 0.02);
+}
+
+TEST(Modes, AnElasticCableIsRefusedByName)
+{
+  CableParams cable;
+  cable.axial_stiffness = 1e7;
+  EndElementParams end;
+  Environment env;
+  EXPECT_THROW(hangingModes(cable, end, env), std::invalid_argument);
+}
+
+}  // namespace tow_sim
