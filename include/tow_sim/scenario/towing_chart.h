@@ -43,6 +43,12 @@ TowSnapshot steadyTow(const SimulationConfig& config, double speed, double cable
 // steadyTow, and std::invalid_argument for an elastic cable.
 std::vector<Mode> steadyTowModes(const SimulationConfig& config, double speed, double cable_out,
                                  const Eigen::Vector3d& current_W);
+// The steady response about that steady tow to the tow point moving harmonically along `input` (a translation
+// [m] per unit input), at each of `periods` [s] (modes.h, motionResponse; tow_sim_response). Throws as
+// steadyTowModes, and std::invalid_argument for a period outside (0, 1e5] s or a zero input.
+std::vector<MotionResponse> steadyTowResponse(const SimulationConfig& config, double speed, double cable_out,
+                                              const Eigen::Vector3d& current_W, const Eigen::Vector3d& input,
+                                              const std::vector<double>& periods);
 
 // The steady tow of `config` with cable_out [m] of cable (segments of the configuration's length, at least
 // one), the ship at speed [m/s] along +x and the uniform current current_W [m/s] (world), the tow point

@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -123,31 +124,70 @@ std::string dominantPart(const ElementFrames& f, const Eigen::VectorXcd& angles,
   return in >= out ? "in-plane" : "out-of-plane";
 }
 
-// K (angles) and D (rates): central differences of the angles' accelerations.
-void differenced(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data, double t,
-                 const ShipEndState& ship, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, double h,
-                 const ElementFrames& f, Eigen::MatrixXd& K, Eigen::MatrixXd& D)
+// The linearised equations about the state: rows q'' (two per element) and then the tension magnitudes at the
+// tow point and at the last element's forward joint; columns the angles (K), their rates (D) and, along
+// `input` (a tow-point translation per unit input), the input's displacement, velocity and acceleration.
+struct Linearisation
+{
+  Eigen::MatrixXd K, D;           // (2n + 2) x 2n
+  Eigen::VectorXd G_x, G_v, G_a;  // 2n + 2
+};
+
+Eigen::VectorXd outputsOf(ChainSolver& solver, const ChainModel& model, const ChainGeometry& geometry,
+                          const ChainData& data, double t, const ShipEndState& ship, const Eigen::Matrix3Xd& x,
+                          const Eigen::Matrix3Xd& v, const ElementFrames& f)
 {
   const Eigen::Index n = x.cols();
-  K.resize(2 * n, 2 * n);
-  D.resize(2 * n, 2 * n);
+  Eigen::Matrix3Xd a(3, n), tensions(3, n);
+  solver.solve(model, geometry, data, t, ship, x, v, a, &tensions);
+  Eigen::VectorXd out(2 * n + 2);
+  out.head(2 * n) = angularAccelerations(f, ship, a);
+  out(2 * n) = tensions.col(0).norm();
+  out(2 * n + 1) = tensions.col(n - 1).norm();
+  return out;
+}
+
+Linearisation linearise(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data, double t,
+                        const ShipEndState& ship, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, double h,
+                        const ElementFrames& f, const Eigen::Vector3d& input)
+{
+  const Eigen::Index n = x.cols();
+  Linearisation L;
+  L.K.resize(2 * n + 2, 2 * n);
+  L.D.resize(2 * n + 2, 2 * n);
   ChainSolver solver;
-  Eigen::Matrix3Xd a(3, n);
-  auto accelerations = [&](const Eigen::Matrix3Xd& xs, const Eigen::Matrix3Xd& vs)
-  {
-    solver.solve(model, geometry, data, t, ship, xs, vs, a);
-    return angularAccelerations(f, ship, a);
-  };
+  auto out = [&](const Eigen::Matrix3Xd& xs, const Eigen::Matrix3Xd& vs, const ShipEndState& end)
+  { return outputsOf(solver, model, geometry, data, t, end, xs, vs, f); };
   for (Eigen::Index e = 0; e < n; ++e)
     for (int k = 0; k < 2; ++k)
     {
       const Eigen::Vector3d& axis = k == 0 ? f.n[static_cast<size_t>(e)] : f.m[static_cast<size_t>(e)];
-      K.col(2 * e + k) =
-          (accelerations(turned(x, f, ship, e, axis, h), v) - accelerations(turned(x, f, ship, e, axis, -h), v)) /
-          (2.0 * h);
-      D.col(2 * e + k) =
-          (accelerations(x, turning(v, f, e, axis, h)) - accelerations(x, turning(v, f, e, axis, -h))) / (2.0 * h);
+      L.K.col(2 * e + k) =
+          (out(turned(x, f, ship, e, axis, h), v, ship) - out(turned(x, f, ship, e, axis, -h), v, ship)) / (2.0 * h);
+      L.D.col(2 * e + k) =
+          (out(x, turning(v, f, e, axis, h), ship) - out(x, turning(v, f, e, axis, -h), ship)) / (2.0 * h);
     }
+  ShipEndState plus = ship, minus = ship;  // the tow point and every joint displaced, then moving, along input
+  plus.p_W += h * input;
+  minus.p_W -= h * input;
+  L.G_x = (out(x.colwise() + h * input, v, plus) - out(x.colwise() - h * input, v, minus)) / (2.0 * h);
+  plus = minus = ship;
+  plus.v_W += h * input;
+  minus.v_W -= h * input;
+  L.G_v = (out(x, v.colwise() + h * input, plus) - out(x, v.colwise() - h * input, minus)) / (2.0 * h);
+  plus = minus = ship;
+  plus.a_W += h * input;
+  minus.a_W -= h * input;
+  L.G_a = (out(x, v, plus) - out(x, v, minus)) / (2.0 * h);
+  return L;
+}
+
+void requireRigid(const ChainModel& model)
+{
+  if (model.elastic())
+    throw std::invalid_argument(
+        "small motions: the rigid cable only (cable.axial_stiffness: 0); an elastic "
+        "segment's stretch is not one of the coordinates");
 }
 }  // namespace
 
@@ -155,14 +195,11 @@ std::vector<Mode> naturalModes(const ChainModel& model, const ChainGeometry& geo
                                const ShipEndState& ship, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
                                double step)
 {
-  if (model.elastic())
-    throw std::invalid_argument(
-        "natural modes: the rigid cable only (cable.axial_stiffness: 0); an elastic "
-        "segment's stretch is not one of the coordinates");
+  requireRigid(model);
   const ElementFrames f = framesOf(geometry, ship, x);
-  Eigen::MatrixXd K, D;
-  differenced(model, geometry, data, t, ship, x, v, step, f, K, D);
-  const Eigen::Index dof = K.rows();
+  const Linearisation L = linearise(model, geometry, data, t, ship, x, v, step, f, Eigen::Vector3d::UnitZ());
+  const Eigen::Index dof = L.K.cols();
+  const Eigen::MatrixXd K = L.K.topRows(dof), D = L.D.topRows(dof);
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(2 * dof, 2 * dof);
   A.topRightCorner(dof, dof).setIdentity();
   A.bottomLeftCorner(dof, dof) = K;
@@ -188,6 +225,47 @@ std::vector<Mode> naturalModes(const ChainModel& model, const ChainGeometry& geo
   }
   std::sort(modes.begin(), modes.end(), [](const Mode& a, const Mode& b) { return a.frequency < b.frequency; });
   return modes;
+}
+
+std::vector<MotionResponse> motionResponse(const ChainModel& model, const ChainGeometry& geometry,
+                                           const ChainData& data, double t, const ShipEndState& ship,
+                                           const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
+                                           const Eigen::Vector3d& input, const std::vector<double>& periods,
+                                           double cg_fraction, double step)
+{
+  requireRigid(model);
+  const ElementFrames f = framesOf(geometry, ship, x);
+  const Linearisation L = linearise(model, geometry, data, t, ship, x, v, step, f, input);
+  const Eigen::Index n = x.cols(), dof = 2 * n;
+  using C = std::complex<double>;
+  const C i(0.0, 1.0);
+  // The end body's lateral axis (port) for its pitch: horizontal, normal to its forward direction -s.
+  const Eigen::Vector3d s_end = f.s.back(), y_body = Eigen::Vector3d::UnitZ().cross(-s_end).normalized();
+  std::vector<MotionResponse> out;
+  for (double period : periods)
+  {
+    const double w = 2.0 * kPi / period;
+    // (-w^2 I - i w D - K) Q = (G_x + i w G_v - w^2 G_a), per unit input displacement
+    const Eigen::MatrixXcd A =
+        -w * w * Eigen::MatrixXcd::Identity(dof, dof) - i * w * L.D.topRows(dof).cast<C>() - L.K.topRows(dof).cast<C>();
+    const Eigen::VectorXcd G = (L.G_x + i * w * L.G_v - w * w * L.G_a).cast<C>();
+    const Eigen::VectorXcd Q = A.partialPivLu().solve(G.head(dof));
+    const Eigen::Matrix3Xcd d = jointDisplacements(f, Q).colwise() + input.cast<C>();
+    const Eigen::Vector3cd bail = n > 1 ? Eigen::Vector3cd(d.col(n - 2)) : Eigen::Vector3cd(input.cast<C>());
+    const Eigen::Vector3cd cg = bail + cg_fraction * (Eigen::Vector3cd(d.col(n - 1)) - bail);
+    MotionResponse r;
+    r.period = period;
+    r.surge = cg.x();
+    r.sway = cg.y();
+    r.heave = cg.z();
+    r.pitch = Q(dof - 2) * f.n.back().dot(y_body) + Q(dof - 1) * f.m.back().dot(y_body);
+    const Eigen::VectorXcd tension =
+        L.K.bottomRows(2).cast<C>() * Q + i * w * (L.D.bottomRows(2).cast<C>() * Q) + G.tail(2);
+    r.tension_ship = tension(0);
+    r.tension_vehicle = tension(1);
+    out.push_back(r);
+  }
+  return out;
 }
 
 }  // namespace tow_sim

@@ -1,12 +1,14 @@
-// Natural periods and mode shapes of a rigid chain about an equilibrium (issue 31, item 2; docs/physics.md
-// §12): each element's direction turned by two small angles normal to its axis (about the horizontal normal
-// to it: in the vertical plane through it, "in-plane"; and about the third axis: "out-of-plane"), so every
-// length is kept exactly; the angles' accelerations from the full solve (ChainSolver), differenced
-// centrally in the angles (stiffness) and in their rates (damping); the eigenvalues of the first-order
-// system [[0, I], [K, D]] give the modes. The tow point holds its motion. Dense: O(elements^3).
+// Small motions of a rigid chain about an equilibrium (issue 31, items 2 and 3; docs/physics.md §12): each
+// element's direction turned by two small angles normal to its axis (about the horizontal normal to it: in the
+// vertical plane through it, "in-plane"; and about the third axis: "out-of-plane"), so every length is kept
+// exactly; the angles' accelerations from the full solve (ChainSolver), differenced centrally in the angles
+// (stiffness) and in their rates (damping). The eigenvalues of the first-order system [[0, I], [K, D]] give the
+// natural modes; the same system forced by the tow point's harmonic motion gives the response to ship motion.
+// The tow point holds its motion (or moves as the input). Dense: O(elements^3).
 #pragma once
 
 #include <Eigen/Core>
+#include <complex>
 #include <string>
 #include <vector>
 
@@ -32,5 +34,23 @@ struct Mode
 std::vector<Mode> naturalModes(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data, double t,
                                const ShipEndState& ship, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
                                double step = 1e-6);
+
+// The steady response to a harmonic motion of the tow point along `input` (a translation per unit input: (0, 0, 1)
+// for heave, or the tow point's displacement per radian of the ship's pitch), per unit input amplitude, as complex
+// amplitudes (magnitude and phase relative to the input's displacement): the same linearisation as the modes,
+// forced by the tow point's displacement, velocity and acceleration (docs/physics.md §12, (P53)). The vehicle's
+// point is its CG, cg_fraction of the way from the bail to the tail point.
+struct MotionResponse
+{
+  double period = 0.0;                                 // [s] of the input
+  std::complex<double> surge, sway, heave;             // [m/unit] of the vehicle's CG, world x, y, z
+  std::complex<double> pitch;                          // [rad/unit] REP-103, positive nose down
+  std::complex<double> tension_ship, tension_vehicle;  // [N/unit] |T_1| and |T_{nu+1}|
+};
+std::vector<MotionResponse> motionResponse(const ChainModel& model, const ChainGeometry& geometry,
+                                           const ChainData& data, double t, const ShipEndState& ship,
+                                           const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
+                                           const Eigen::Vector3d& input, const std::vector<double>& periods,
+                                           double cg_fraction, double step = 1e-6);
 
 }  // namespace tow_sim

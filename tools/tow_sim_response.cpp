@@ -1,0 +1,133 @@
+// tow_sim_response: the steady tow's response to the ship's motion in the frequency domain, without roscore.
+//   tow_sim_response --config FILE.yaml --speed U [--cable-out L] --input heave|surge|sway|pitch
+//                    --periods FROM:TO:STEP [--tow-point X,Y,Z] --out DIR
+// Writes DIR/response.csv: per period [s], the amplitude per metre (per radian for pitch) of input and the phase
+// [deg] relative to the input's displacement of the vehicle's heave, surge, sway [m], pitch [rad] and of the
+// tension at the ship and at the vehicle [N] (docs/tools.md, "Response to ship motion"). The tow point [m] is in
+// the ship frame (FLU) from the ship's reference point (default -20,0,0): the ship's pitch (REP-103, bow down
+// positive) moves it by pitch x its position. The rigid cable only. Exit codes: 0 done; 2 bad arguments or
+// configuration; 3 no steady tow found; 4 cannot write DIR.
+#include <cmath>
+#include <complex>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include "tow_sim/core/constants.h"
+#include "tow_sim/scenario/towing_chart.h"
+
+namespace
+{
+using namespace tow_sim;
+
+int usage(const std::string& why)
+{
+  std::fprintf(stderr,
+               "tow_sim_response: %s\nusage: tow_sim_response --config FILE.yaml --speed U [--cable-out L] --input "
+               "heave|surge|sway|pitch --periods FROM:TO:STEP [--tow-point X,Y,Z] --out DIR\n",
+               why.c_str());
+  return 2;
+}
+
+// The tow point's translation per unit input, world = ship frame at heading 0.
+Eigen::Vector3d inputMotion(const std::string& input, const Eigen::Vector3d& tow_point_S)
+{
+  if (input == "heave")
+    return Eigen::Vector3d::UnitZ();
+  if (input == "surge")
+    return Eigen::Vector3d::UnitX();
+  if (input == "sway")
+    return Eigen::Vector3d::UnitY();
+  if (input == "pitch")  // about +y, bow down: the tow point moves by y x r
+    return Eigen::Vector3d::UnitY().cross(tow_point_S);
+  throw std::invalid_argument("--input " + input + ": one of heave, surge, sway, pitch");
+}
+
+Eigen::Vector3d towPoint(const std::string& text)
+{
+  std::vector<double> v;
+  std::istringstream in(text);
+  for (std::string item; std::getline(in, item, ',');)
+    v.push_back(parseRange(item, "--tow-point").at(0));
+  if (v.size() != 3)
+    throw std::invalid_argument("--tow-point " + text + ": X,Y,Z [m] in the ship frame");
+  return Eigen::Vector3d(v[0], v[1], v[2]);
+}
+
+int write(const std::string& dir, const std::vector<MotionResponse>& rows)
+{
+  std::error_code made;
+  std::filesystem::create_directories(dir, made);
+  std::ofstream out(dir + "/response.csv");
+  if (!out)
+  {
+    std::fprintf(stderr, "tow_sim_response: cannot write into %s\n", dir.c_str());
+    return 4;
+  }
+  out.precision(10);
+  out << "period";
+  for (const char* name :
+       { "vehicle_heave", "vehicle_surge", "vehicle_sway", "vehicle_pitch", "tension_ship", "tension_vehicle" })
+    out << ',' << name << ',' << name << "_phase";
+  out << '\n';
+  for (const MotionResponse& r : rows)
+  {
+    out << r.period;
+    for (const std::complex<double>& h : { r.heave, r.surge, r.sway, r.pitch, r.tension_ship, r.tension_vehicle })
+      out << ',' << std::abs(h) << ',' << std::arg(h) * 180.0 / kPi;
+    out << '\n';
+  }
+  std::printf("tow_sim_response: wrote %s/response.csv (%zu periods)\n", dir.c_str(), rows.size());
+  return 0;
+}
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  std::string config_path, speed, cable_out, input, periods, tow_point = "-20,0,0", out_dir;
+  for (int i = 1; i < argc; ++i)
+  {
+    const bool has_value = i + 1 < argc;
+    std::string* target = nullptr;
+    for (auto [flag, field] : { std::pair<const char*, std::string*>{ "--config", &config_path },
+                                { "--speed", &speed },
+                                { "--cable-out", &cable_out },
+                                { "--input", &input },
+                                { "--periods", &periods },
+                                { "--tow-point", &tow_point },
+                                { "--out", &out_dir } })
+      if (!std::strcmp(argv[i], flag) && has_value)
+        target = field;
+    if (!target)
+      return usage(std::string("unknown argument '") + argv[i] + "'");
+    *target = argv[++i];
+  }
+  if (config_path.empty() || speed.empty() || input.empty() || periods.empty() || out_dir.empty())
+    return usage("--config, --speed, --input, --periods and --out are needed");
+  std::vector<MotionResponse> rows;
+  try
+  {
+    const SimulationConfig config = loadConfigFile(config_path);
+    const double u = parseRange(speed, "--speed").at(0);
+    const double l = cable_out.empty() ? config.cable.length : parseRange(cable_out, "--cable-out").at(0);
+    const Eigen::Vector3d motion = inputMotion(input, towPoint(tow_point));
+    rows = steadyTowResponse(config, u, l, Eigen::Vector3d::Zero(), motion, parseRange(periods, "--periods"));
+  }
+  catch (const std::invalid_argument& e)
+  {
+    return usage(e.what());
+  }
+  catch (const std::exception& e)
+  {
+    std::fprintf(stderr, "tow_sim_response: no steady tow: %s\n", e.what());
+    return 3;
+  }
+  return write(out_dir, rows);
+}
