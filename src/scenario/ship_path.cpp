@@ -130,4 +130,17 @@ ShipHistory buildShipPath(const Scenario& sc, double dt)
   return path;
 }
 
+std::shared_ptr<ShipHistory> straightShip(double speed, double from, double to, double dt)
+{
+  const long samples = std::lround((to - from) / dt) + 1;
+  auto ship = std::make_shared<ShipHistory>(1.0, static_cast<size_t>(std::max(8L, samples + 2)));
+  for (long k = 0; k < samples; ++k)
+  {
+    const double t = from + k * dt;
+    ship->add(t, Eigen::Vector3d(speed * t, 0.0, 0.0), Eigen::Vector3d(speed, 0.0, 0.0),
+              ShipPose{ speed * t, 0.0, 0.0, speed });
+  }
+  return ship;
+}
+
 }  // namespace tow_sim

@@ -11,6 +11,7 @@
 #include "tow_sim/core/constants.h"
 #include "tow_sim/core/io/numeric_csv.h"
 #include "tow_sim/core/run/tow_run.h"
+#include "tow_sim/scenario/ship_path.h"
 
 namespace tow_sim
 {
@@ -62,11 +63,7 @@ std::unique_ptr<TowRun> steadyTowRun(const SimulationConfig& config, double spee
   c.environment.waves = WaveParams();         // the steady tow is a calm-water one
   c.winch.enabled = false;                    // the chart's lengths are the cable out, whatever the winch's limits
   c.seabed.type = SeabedParams::Type::kNone;  // the steady tow ignores the bottom
-  auto ship = std::make_shared<ShipHistory>(1.0, 8);
-  for (int k = -2; k <= 2; ++k)
-    ship->add(k, Eigen::Vector3d(speed * k, 0.0, 0.0), Eigen::Vector3d(speed, 0.0, 0.0),
-              ShipPose{ speed * k, 0.0, 0.0, speed });
-  auto run = std::make_unique<TowRun>(c, ship, InitialShape());
+  auto run = std::make_unique<TowRun>(c, straightShip(speed, -2.0, 2.0), InitialShape());
   const std::string warning = run->start(0.0);
   if (!warning.empty())
     throw std::runtime_error(warning);

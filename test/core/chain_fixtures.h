@@ -6,6 +6,7 @@
 
 #include "tow_sim/core/constants.h"
 #include "tow_sim/core/integration/simulator.h"
+#include "tow_sim/core/run/simulation_config.h"
 
 namespace tow_sim
 {
@@ -21,6 +22,18 @@ inline std::shared_ptr<ChainModel> makeModel(const CableParams& cable, const End
                                              std::shared_ptr<const Seabed> seabed = nullptr)
 {
   return std::make_shared<ChainModel>(cable, std::make_shared<RigidEndElement>(end, num), env, num, seabed);
+}
+
+// 200 m of the default cable in 40 segments behind the default vehicle, dopri5 at 1e-9: a short tow for runs
+// checked to many digits (test_modes, test_motion_response).
+inline SimulationConfig shortTightTow()
+{
+  SimulationConfig config;
+  config.cable.length = 200.0;
+  config.cable.segments = 40;
+  config.numerics.stepper = StepperType::kDopri5;
+  config.numerics.abs_tol = config.numerics.rel_tol = 1e-9;
+  return config;
 }
 
 // An end element that is one more cable segment: same length, mass, diameter and coefficients.

@@ -13,6 +13,7 @@
 #include "tow_sim/core/analysis/modes.h"
 #include "tow_sim/core/chain/chain_state.h"
 #include "tow_sim/core/constants.h"
+#include "tow_sim/scenario/ship_path.h"
 #include "tow_sim/scenario/towing_chart.h"
 
 namespace tow_sim
@@ -108,11 +109,7 @@ TEST(Modes, AHeavyBodyOnALightCableSwingsAsTheTwoDegreeOfFreedomPendulum)
 // the successive peaks of the tail's sideways offset from the bail).
 TEST(Modes, TheSteadyTowsVehicleYawModeRingsAtItsPeriodAndDampingInAFreeDecay)
 {
-  SimulationConfig config;
-  config.cable.length = 200.0;
-  config.cable.segments = 40;
-  config.numerics.stepper = StepperType::kDopri5;
-  config.numerics.abs_tol = config.numerics.rel_tol = 1e-9;
+  const SimulationConfig config = test::shortTightTow();
   const double speed = 0.2;
   const std::vector<Mode> modes = steadyTowModes(config, speed, config.cable.length, Eigen::Vector3d::Zero());
   const auto yaw_mode = std::find_if(
@@ -121,10 +118,7 @@ TEST(Modes, TheSteadyTowsVehicleYawModeRingsAtItsPeriodAndDampingInAFreeDecay)
   ASSERT_LT(yaw_mode->damping_ratio, 0.2);  // lightly damped: several peaks to measure
 
   const TowSnapshot eq = steadyTow(config, speed, config.cable.length, Eigen::Vector3d::Zero());
-  auto ship = std::make_shared<ShipHistory>(1.0, 200);
-  for (int k = -2; k <= 100; ++k)
-    ship->add(k, Eigen::Vector3d(speed * k, 0.0, 0.0), Eigen::Vector3d(speed, 0.0, 0.0),
-              ShipPose{ speed * k, 0.0, 0.0, speed });
+  const auto ship = straightShip(speed, -2.0, 100.0);
   InitialShape initial;
   initial.type = InitialShape::Type::kPoints;
   initial.points = eq.joints.rightCols(eq.joints.cols() - 1) + 0.005 * yaw_mode->shape;

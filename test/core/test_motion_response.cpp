@@ -10,6 +10,7 @@
 #include <memory>
 #include <vector>
 
+#include "chain_fixtures.h"
 #include "tow_sim/core/constants.h"
 #include "tow_sim/core/run/tow_run.h"
 #include "tow_sim/scenario/towing_chart.h"
@@ -80,11 +81,7 @@ Measured timeDomain(const SimulationConfig& config, double speed, double period,
 
 TEST(MotionResponse, HeaveAndSurgeResponsesAgreeWithSmallAmplitudeRunsInTheTimeDomain)
 {
-  SimulationConfig config;
-  config.cable.length = 200.0;
-  config.cable.segments = 40;
-  config.numerics.stepper = StepperType::kDopri5;
-  config.numerics.abs_tol = config.numerics.rel_tol = 1e-9;
+  const SimulationConfig config = test::shortTightTow();
   const double speed = 2.0;
   const Eigen::Vector3d heave = Eigen::Vector3d::UnitZ(), surge = Eigen::Vector3d::UnitX();
   for (const Eigen::Vector3d& input : { heave, surge })

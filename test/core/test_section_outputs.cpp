@@ -16,6 +16,7 @@
 #include "tow_sim/core/run/tow_run.h"
 #include "tow_sim/scenario/batch_run.h"
 #include "tow_sim/scenario/shape_replay.h"
+#include "tow_sim/scenario/ship_path.h"
 
 namespace tow_sim
 {
@@ -39,11 +40,7 @@ cable:
 // The steady tow of kTwoPart at kSpeed, started from its equilibrium.
 TowSnapshot steadyTow(const SimulationConfig& c)
 {
-  auto ship = std::make_shared<ShipHistory>(1.0, 8);
-  for (int k = -2; k <= 2; ++k)
-    ship->add(k, Eigen::Vector3d(kSpeed * k, 0.0, 0.0), Eigen::Vector3d(kSpeed, 0.0, 0.0),
-              ShipPose{ kSpeed * k, 0.0, 0.0, kSpeed });
-  TowRun run(c, ship, InitialShape());
+  TowRun run(c, straightShip(kSpeed, -2.0, 2.0), InitialShape());
   EXPECT_EQ(run.start(0.0), "");
   return run.snapshot();
 }

@@ -26,6 +26,7 @@
 
 #include "tow_sim/core/constants.h"
 #include "tow_sim/core/run/tow_run.h"
+#include "tow_sim/scenario/ship_path.h"
 
 namespace tow_sim
 {
@@ -69,11 +70,7 @@ SimulationConfig clumpedTow()
 // advanced to t_end [s] (0: not at all).
 TowSnapshot steadyTow(const SimulationConfig& c, double t_end = 0.0)
 {
-  auto ship = std::make_shared<ShipHistory>(1.0, 1000);
-  for (int k = -2; k <= static_cast<int>(t_end / 10.0) + 2; ++k)
-    ship->add(10.0 * k, Eigen::Vector3d(10.0 * kSpeed * k, 0.0, 0.0), Eigen::Vector3d(kSpeed, 0.0, 0.0),
-              ShipPose{ 10.0 * kSpeed * k, 0.0, 0.0, kSpeed });
-  TowRun run(c, ship, InitialShape());
+  TowRun run(c, straightShip(kSpeed, -20.0, 10.0 * (static_cast<int>(t_end / 10.0) + 2), 10.0), InitialShape());
   const std::string warning = run.start(0.0);
   EXPECT_EQ(warning, "");
   if (t_end > 0.0)

@@ -12,6 +12,7 @@
 
 #include "tow_sim/core/constants.h"
 #include "tow_sim/core/run/tow_run.h"
+#include "tow_sim/scenario/ship_path.h"
 #include "tow_sim/scenario/towing_chart.h"
 
 namespace tow_sim
@@ -26,10 +27,7 @@ TowSnapshot settledTow(double speed, double cable_out)
   SimulationConfig c;
   c.cable.length = cable_out;
   c.cable.segments = static_cast<int>(cable_out / 10.0);
-  auto ship = std::make_shared<ShipHistory>(1.0, 2000);
-  for (int k = -2; k <= 1600; ++k)
-    ship->add(k, Eigen::Vector3d(speed * k, 0.0, 0.0), Eigen::Vector3d(speed, 0.0, 0.0),
-              ShipPose{ speed * k, 0.0, 0.0, speed });
+  const auto ship = straightShip(speed, -2.0, 1600.0);
   InitialShape line;
   line.type = InitialShape::Type::kLine;
   line.line_direction_S = Eigen::Vector3d(-1.0, 0.0, -0.577);
