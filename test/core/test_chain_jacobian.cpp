@@ -2,7 +2,7 @@
 // they differentiate: the drag and rotation-drag moment (also where the normal flow vanishes and inside the
 // tangential drag's smoothing band), a cable segment's projected loads in its joint velocities (with the
 // winch paying out and on the seabed), the seabed contact force, the geometric stiffness, and the end
-// body's forward differences.
+// body's own central differences.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -342,7 +342,7 @@ TEST(ChainJacobian, ElasticAxialForceDerivativesMatchCentralDifferences)
   EXPECT_EQ(J.dh_dx.norm() + J.dh_dv.norm(), 0.0);
 }
 
-TEST(ChainJacobian, EndBodyForwardDifferencesMatchCentralDifferences)
+TEST(ChainJacobian, EndBodyDifferencesMatchCentralDifferencesOfItsLoads)
 {
   // The vehicle in Approach A, B and B with the Munk terms, fins moving, thrust, on the seabed or not.
   std::mt19937 rng(99);

@@ -61,6 +61,7 @@ void Chain::refresh(const ChainModel& model, const ChainData& data, double t, co
   L.velocities(dydt) = accelerations_;
 }
 
+// (S26): joint by joint from the first, along each element's axis only.
 void Chain::project(const ChainModel& model, const ShipEndState& ship, StateVector& y) const
 {
   const StateLayout& L = layout_;

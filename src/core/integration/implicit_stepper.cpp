@@ -136,6 +136,7 @@ void ImplicitStepper::stages(const RosenbrockTableau& rw, double t, double h, co
     }
 }
 
+// (S24): positions relative to the tow point, velocities as they are.
 double implicitErrorNorm(const NumericsParams& num, const StateLayout& L, bool winch, const std::vector<double>& error,
                          const std::vector<double>& y, const std::vector<double>& y_next, const Eigen::Vector3d& p0,
                          const Eigen::Vector3d& p1)

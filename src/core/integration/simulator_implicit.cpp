@@ -58,7 +58,7 @@ bool Simulator::stepImplicit(double t_end, double winch_step, StepReport& report
   {
     const double err = implicitErrorNorm(model_->numerics(), layout(), winch_.enabled, error_, y_, y_next_,
                                          ship_(t_).p_W, ship_(t_next).p_W);
-    // The error estimate goes like h^(embedded order + 1).
+    // (S25): the error estimate goes like h^(embedded order + 1).
     const double grow =
         std::isfinite(err) ? 0.9 * std::pow(std::max(err, 1e-10), -1.0 / (tableau_->embedded_order + 1)) : 0.2;
     if (!(err <= 1.0))
