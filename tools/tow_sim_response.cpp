@@ -36,20 +36,6 @@ int usage(const std::string& why)
   return 2;
 }
 
-// The tow point's translation per unit input, world = ship frame at heading 0.
-Eigen::Vector3d inputMotion(const std::string& input, const Eigen::Vector3d& tow_point_S)
-{
-  if (input == "heave")
-    return Eigen::Vector3d::UnitZ();
-  if (input == "surge")
-    return Eigen::Vector3d::UnitX();
-  if (input == "sway")
-    return Eigen::Vector3d::UnitY();
-  if (input == "pitch")  // about +y, bow down: the tow point moves by y x r
-    return Eigen::Vector3d::UnitY().cross(tow_point_S);
-  throw std::invalid_argument("--input " + input + ": one of heave, surge, sway, pitch");
-}
-
 Eigen::Vector3d towPoint(const std::string& text)
 {
   std::vector<double> v;
@@ -117,7 +103,7 @@ int main(int argc, char** argv)
     const SimulationConfig config = loadConfigFile(config_path);
     const double u = parseRange(speed, "--speed").at(0);
     const double l = cable_out.empty() ? config.cable.length : parseRange(cable_out, "--cable-out").at(0);
-    const Eigen::Vector3d motion = inputMotion(input, towPoint(tow_point));
+    const Eigen::Vector3d motion = towPointMotion(input, towPoint(tow_point));
     rows = steadyTowResponse(config, u, l, Eigen::Vector3d::Zero(), motion, parseRange(periods, "--periods"));
   }
   catch (const std::invalid_argument& e)

@@ -19,6 +19,7 @@ from tow_sim._core import (  # noqa: F401  (the module's interface)
     load_scenario,
     modes,
     plan_cable_out,
+    response,
     steady_tow,
     towing_chart,
 )
@@ -32,6 +33,7 @@ __all__ = [
     "load_scenario",
     "modes",
     "plan_cable_out",
+    "response",
     "steady_tow",
     "towing_chart",
 ]

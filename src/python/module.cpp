@@ -1,9 +1,11 @@
 // tow_sim._core: the ROS-free core from Python (docs/python.md). The package tow_sim (python/tow_sim) imports it.
+#include <pybind11/complex.h>
 #include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <complex>
 #include <sstream>
 #include <stdexcept>
 
@@ -157,6 +159,47 @@ void bindPlan(py::module_& m)
       "The cable out [m] that puts the vehicle at target_depth [m] at speed [m/s] (tow_sim_chart --target-depth), "
       "between the winch's limits unless given.");
 }
+void bindResponse(py::module_& m)
+{
+  m.def(
+      "response",
+      [](const SimulationConfig& c, double speed, const std::string& input, const std::vector<double>& periods,
+         std::optional<double> cable_out, const py::object& tow_point)
+      {
+        const Eigen::Vector3d motion = towPointMotion(input, vector3(tow_point, "tow_point"));
+        std::vector<MotionResponse> rows;
+        {
+          py::gil_scoped_release released;
+          rows =
+              steadyTowResponse(c, speed, cable_out.value_or(c.cable.length), Eigen::Vector3d::Zero(), motion, periods);
+        }
+        py::dict out;
+        auto column = [&](const char* name, std::complex<double> MotionResponse::*field)
+        {
+          std::vector<std::complex<double>> values;
+          for (const MotionResponse& r : rows)
+            values.push_back(r.*field);
+          out[name] = py::array(py::cast(values));
+        };
+        std::vector<double> period;
+        for (const MotionResponse& r : rows)
+          period.push_back(r.period);
+        out["period"] = py::array(py::cast(period));
+        column("vehicle_heave", &MotionResponse::heave);
+        column("vehicle_surge", &MotionResponse::surge);
+        column("vehicle_sway", &MotionResponse::sway);
+        column("vehicle_pitch", &MotionResponse::pitch);
+        column("tension_ship", &MotionResponse::tension_ship);
+        column("tension_vehicle", &MotionResponse::tension_vehicle);
+        return out;
+      },
+      "config"_a, "speed"_a, "input"_a, "periods"_a, "cable_out"_a = py::none(),
+      "tow_point"_a = py::make_tuple(-20.0, 0.0, 0.0),
+      "The steady tow's response to the ship's heave, surge, sway (per m) or pitch (per rad) at each period [s] "
+      "(tow_sim_response): complex amplitudes of the vehicle's heave, surge, sway [m], pitch [rad] and the tensions "
+      "[N], phases relative to the input's displacement.");
+}
+
 void bindModes(py::module_& m)
 {
   m.def(
@@ -194,4 +237,5 @@ PYBIND11_MODULE(_core, m)
   tow_sim::python::bindChart(m);
   tow_sim::python::bindPlan(m);
   tow_sim::python::bindModes(m);
+  tow_sim::python::bindResponse(m);
 }

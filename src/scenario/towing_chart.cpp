@@ -88,6 +88,19 @@ std::vector<Mode> steadyTowModes(const SimulationConfig& config, double speed, d
   return naturalModes(run->model(), sim.geometry(), sim.data(), sim.time(), sim.firstJoint(), state.x, state.v);
 }
 
+Eigen::Vector3d towPointMotion(const std::string& input, const Eigen::Vector3d& tow_point_S)
+{
+  if (input == "heave")
+    return Eigen::Vector3d::UnitZ();
+  if (input == "surge")
+    return Eigen::Vector3d::UnitX();
+  if (input == "sway")
+    return Eigen::Vector3d::UnitY();
+  if (input == "pitch")  // about +y, bow down: the tow point moves by y x r
+    return Eigen::Vector3d::UnitY().cross(tow_point_S);
+  throw std::invalid_argument("input '" + input + "': one of heave, surge, sway, pitch");
+}
+
 std::vector<MotionResponse> steadyTowResponse(const SimulationConfig& config, double speed, double cable_out,
                                               const Eigen::Vector3d& current_W, const Eigen::Vector3d& input,
                                               const std::vector<double>& periods)

@@ -247,3 +247,19 @@ def test_the_modes_are_tow_sim_modes(tmp_path):
         assert mode["dominant"] == row["dominant"]
     yaw = next(m for m in got if m["dominant"] == "vehicle yaw")
     assert 6.0 < yaw["period"] < 7.0 and 0.0 < yaw["damping_ratio"] < 0.1  # test_modes rings it in the time domain
+
+
+def test_the_response_is_tow_sim_responses(tmp_path):
+    subprocess.run([os.path.join(BIN, "tow_sim_response"), "--config", CONFIG, "--speed", "2", "--input", "pitch",
+                    "--periods", "4:12:4", "--out", str(tmp_path)], check=True, capture_output=True)
+    want = read_csv(tmp_path / "response.csv")
+    got = tow_sim.response(tow_sim.load_config(CONFIG), speed=2.0, input="pitch", periods=[4.0, 8.0, 12.0])
+    assert list(got["period"]) == [4.0, 8.0, 12.0]
+    for name in ("vehicle_heave", "vehicle_pitch", "tension_ship", "tension_vehicle"):
+        assert np.allclose(np.abs(got[name]), want[name], rtol=1e-9), name
+        assert np.allclose(np.degrees(np.angle(got[name])), want[name + "_phase"], atol=1e-7), name
+    # The ship's pitch moves the tow point 20 m aft of its reference point by 20 m per radian: 20x heave.
+    heave = tow_sim.response(tow_sim.load_config(CONFIG), speed=2.0, input="heave", periods=[4.0, 8.0, 12.0])
+    assert np.allclose(got["vehicle_heave"], 20.0 * heave["vehicle_heave"], rtol=1e-6)
+    with pytest.raises(ValueError, match="input 'roll': one of heave, surge, sway, pitch"):
+        tow_sim.response(tow_sim.load_config(CONFIG), speed=2.0, input="roll", periods=[4.0])

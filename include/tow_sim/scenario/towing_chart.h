@@ -50,6 +50,11 @@ std::vector<MotionResponse> steadyTowResponse(const SimulationConfig& config, do
                                               const Eigen::Vector3d& current_W, const Eigen::Vector3d& input,
                                               const std::vector<double>& periods);
 
+// The tow point's translation [m] per unit of the ship's motion `input`, world at heading 0: heave (0, 0, 1), surge
+// (1, 0, 0), sway (0, 1, 0) per metre, or pitch (REP-103, bow down positive) y x tow_point_S per radian,
+// tow_point_S [m] the tow point in the ship frame from its reference point. std::invalid_argument otherwise.
+Eigen::Vector3d towPointMotion(const std::string& input, const Eigen::Vector3d& tow_point_S);
+
 // The steady tow of `config` with cable_out [m] of cable (segments of the configuration's length, at least
 // one), the ship at speed [m/s] along +x and the uniform current current_W [m/s] (world), the tow point
 // at the surface.
