@@ -38,7 +38,7 @@ TEST(FirstHour, TheReadmesPathsRunAsWritten)
   const std::string said = runWalkthrough(
       std::string(TOW_SIM_SOURCE_DIR) + "/README.md " + TOW_SIM_WS + " --cwd " + TOW_SIM_SOURCE_DIR, &status);
   EXPECT_EQ(status, 0) << said;
-  EXPECT_NE(said.find("7 blocks, passed"), std::string::npos);  // every block the README marks ran
+  EXPECT_NE(said.find("7 blocks, passed"), std::string::npos);                // every block the README marks ran
   EXPECT_NE(said.find("depth 187.8 m, layback 461.0 m"), std::string::npos);  // the Python block's steady tow
   EXPECT_NE(said.find("190 points (0 without an equilibrium)"), std::string::npos);
   EXPECT_NE(said.find("with 500 m out the vehicle stays between 100 and 200 m"), std::string::npos);
