@@ -7,6 +7,7 @@
    against python3 running tow_sim.Run(scenario).run(600) (the interpreter's start and the import included).
 2. Short steps: 60 s in 0.05 s steps driven from Python (advance_to and snapshot per step) against the same steps
    in the module's C++ loop (Run.run), the difference per step.
+3. A 200-run sweep (tow_sim_sweep, 60 s runs) as tow_sim_batch processes against in process through the module.
 Prints the medians and their ratio with the commit and the date, for the docs.
 """
 import argparse
@@ -63,6 +64,29 @@ def per_call_cost(scenario, step=0.05, until=60.0, repeats=5):
     return (statistics.median(python_loop) - statistics.median(cpp_loop)) / (steps + 1), statistics.median(cpp_loop)
 
 
+SWEEP_200 = """scenario:
+  cable: {length: 300.0, segments: 30}
+  ship: {manoeuvres: [{type: turn, speed: 2.0, radius: 200.0, angle: 1.0}]}
+  simulation: {duration: 60.0, output_interval: 1.0, shape_interval: 30.0}
+grid:
+  cable.length: [200.0, 220.0, 240.0, 260.0, 280.0, 300.0, 320.0, 340.0, 360.0, 380.0]
+  ship.manoeuvres[0].speed: [1.0, 1.1, 1.2, 1.3, 1.4, 1.5, 1.6, 1.7, 1.8, 1.9, 2.0, 2.1, 2.2, 2.3, 2.4, 2.5, 2.6, 2.7,
+                             2.8, 2.9]
+"""
+
+
+def sweep_seconds(folder, batch, extra):
+    """[s] of wall time for tow_sim_sweep over SWEEP_200 (200 runs of 60 s at nu = 20..38) on every core."""
+    sweep = os.path.join(folder, "sweep.yaml")
+    with open(sweep, "w") as f:
+        f.write(SWEEP_200)
+    out = os.path.join(folder, f"sweep_{len(os.listdir(folder))}")
+    start = time.perf_counter()
+    subprocess.run([sys.executable, os.path.join(SOURCE, "scripts", "tow_sim_sweep"), sweep, "--out", out] + extra,
+                   check=True, capture_output=True)
+    return time.perf_counter() - start
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=5)
@@ -84,6 +108,10 @@ def main():
         extra, cpp = per_call_cost(scenario)
         print(f"60 s in 0.05 s steps: the C++ loop (Run.run) {cpp:.3f} s; from Python (advance_to + snapshot per "
               f"step) {extra * 1e6:.1f} us more per step")
+        processes = min(sweep_seconds(folder, batch, ["--batch", batch]) for _ in range(2))
+        module = min(sweep_seconds(folder, batch, []) for _ in range(2))
+        print(f"tow_sim_sweep, 200 runs of 60 s on {os.cpu_count()} cores (best of 2): tow_sim_batch processes "
+              f"{processes:.2f} s, in process through the module {module:.2f} s: {processes / module:.2f}x faster")
 
 
 if __name__ == "__main__":

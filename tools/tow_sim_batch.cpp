@@ -5,21 +5,15 @@
 // simulation.save_state_at. Exit codes: 0 done; 2 bad arguments,
 // scenario or saved initial state; 3 the run diverged (the CSV files then hold the run up to the last good
 // output and the error says so); 4 cannot write DIR. --precision: significant digits of the CSV's numbers
-// (6..17, default 10; 17 gives every double exactly).
+// (6..17, default 10; 17 gives every double exactly). The work is runBatchFile (batch_run.h), which the Python
+// module's run_batch and tow_sim_sweep's in-process runs share.
 
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <exception>
-#include <filesystem>
-#include <fstream>
-#include <stdexcept>
 #include <string>
-#include <system_error>
-#include <vector>
 
-#include "tow_sim/core/io/saved_state.h"
 #include "tow_sim/scenario/batch_run.h"
 
 namespace
@@ -37,11 +31,11 @@ int usage(const std::string& why)
 class Progress
 {
 public:
-  explicit Progress(double total) : total_(total), start_(std::chrono::steady_clock::now()) {}
-  void update(double done)
+  Progress() : start_(std::chrono::steady_clock::now()) {}
+  void update(double done, double total)
   {
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    const int percent = static_cast<int>(100.0 * done / total_);
+    const int percent = static_cast<int>(100.0 * done / total);
     if (wall < 2.0 || percent < next_)
       return;
     next_ = percent + 5;
@@ -56,83 +50,10 @@ public:
   }
 
 private:
-  double total_;
   std::chrono::steady_clock::time_point start_;
   int next_ = 0;
   bool shown_ = false;
 };
-// events.csv, and the parting said on stdout.
-void writeEvents(const std::string& out_dir, const BatchResult& result)
-{
-  std::ofstream(out_dir + "/events.csv") << eventsHeader() << '\n' << eventsRows(result);
-  if (result.parting)
-    std::printf(
-        "tow_sim_batch: the cable parted at t = %.3f s at joint %d (1: the tow point) under %.0f N; the "
-        "vehicle side goes on with a free end (events.csv)\n",
-        result.parting->t, result.parting->joint, result.parting->tension);
-}
-
-// Runs the scenario into the open CSV files and the state files, and says how it went (the exit code).
-int runAndReport(const Scenario& sc, const std::string& out_dir, std::ostream& series, std::ostream& shapes,
-                 int precision)
-{
-  Progress progress(sc.duration);
-  BatchResult result;
-  std::vector<std::string> saved;
-  bool unwritten = false;
-  auto save = [&out_dir, &saved, &unwritten](double t, const RunState& state)
-  {
-    char name[64];
-    std::snprintf(name, sizeof name, "/state_%g.txt", t);
-    if (std::strtod(name + 7, nullptr) != t)  // %g's six digits would name two times alike
-      std::snprintf(name, sizeof name, "/state_%.17g.txt", t);
-    try
-    {
-      writeRunState(out_dir + name, state);
-      saved.push_back(name + 1);
-    }
-    catch (const std::exception& e)
-    {
-      std::fprintf(stderr, "tow_sim_batch: %s\n", e.what());
-      unwritten = true;
-    }
-  };
-  try
-  {
-    runScenario(
-        sc, series, shapes, result, [&progress](double t) { progress.update(t); }, save, precision);
-  }
-  catch (const BadInitialState& e)
-  {
-    progress.finish();
-    std::fprintf(stderr, "tow_sim_batch: bad initial state: %s\n", e.what());
-    return 2;
-  }
-  catch (const std::exception& e)
-  {
-    progress.finish();
-    writeEvents(out_dir, result);
-    if (!result.start_warning.empty())  // the fallback start is the likeliest cause: say so first
-      std::fprintf(stderr, "tow_sim_batch: %s\n", result.start_warning.c_str());
-    std::fprintf(stderr,
-                 "tow_sim_batch: the run stopped: %s\ntow_sim_batch: the CSV files in %s are INCOMPLETE: they hold "
-                 "the run up to t = %.3f s of %.3f s\n",
-                 e.what(), out_dir.c_str(), result.t_reached, sc.duration);
-    return 3;
-  }
-  progress.finish();
-  writeEvents(out_dir, result);
-  if (!result.start_warning.empty())
-    std::fprintf(stderr, "tow_sim_batch: %s\n", result.start_warning.c_str());
-  std::string states;
-  for (const std::string& name : saved)
-    states += ", " + name;
-  std::printf(
-      "tow_sim_batch: %.0f s simulated; wrote %s/timeseries.csv (%ld rows), shapes.csv, scenario.yaml, "
-      "events.csv%s\n",
-      sc.duration, out_dir.c_str(), result.rows, states.c_str());
-  return unwritten ? 4 : 0;
-}
 }  // namespace
 
 int main(int argc, char** argv)
@@ -158,27 +79,11 @@ int main(int argc, char** argv)
   }
   if (scenario_path.empty() || out_dir.empty())
     return usage("both --scenario and --out are needed");
-  Scenario sc;
-  try
-  {
-    sc = loadScenarioFile(scenario_path);
-  }
-  catch (const std::exception& e)
-  {
-    std::fprintf(stderr, "tow_sim_batch: bad scenario %s: %s\n", scenario_path.c_str(), e.what());
-    return 2;
-  }
-  std::error_code made;  // with its parents (out/run); a failure shows as the files not opening
-  std::filesystem::create_directories(out_dir, made);
-  std::ofstream series(out_dir + "/timeseries.csv"), shapes(out_dir + "/shapes.csv"),
-      resolved(out_dir + "/scenario.yaml");
-  if (!series || !shapes || !resolved)
-  {
-    std::fprintf(stderr, "tow_sim_batch: cannot write into %s\n", out_dir.c_str());
-    return 4;
-  }
-  resolved << "# " << scenario_path << " with every default filled in, as run by tow_sim_batch\n" << toYaml(sc) << "\n";
-  resolved.close();
-
-  return runAndReport(sc, out_dir, series, shapes, precision);
+  Progress progress;
+  const BatchOutcome outcome = runBatchFile(scenario_path, out_dir, precision,
+                                            [&progress](double t, double duration) { progress.update(t, duration); });
+  progress.finish();
+  std::fputs(outcome.report.c_str(), stdout);
+  std::fputs(outcome.errors.c_str(), stderr);
+  return outcome.code;
 }

@@ -20,6 +20,7 @@ from tow_sim._core import (  # noqa: F401  (the module's interface)
     modes,
     plan_cable_out,
     response,
+    run_batch,
     steady_tow,
     towing_chart,
 )
@@ -34,6 +35,7 @@ __all__ = [
     "modes",
     "plan_cable_out",
     "response",
+    "run_batch",
     "steady_tow",
     "towing_chart",
 ]

@@ -88,6 +88,23 @@ void bindScenario(py::module_& m)
       .def_readonly("duration", &Scenario::duration, "[s]")
       .def_readonly("output_interval", &Scenario::output_interval, "[s]");
   m.def("load_scenario", &loadScenarioFile, "path"_a, "A scenario file (as tow_sim_batch --scenario reads it).");
+  m.def(
+      "run_batch",
+      [](const std::string& scenario_path, const std::string& out_dir, int precision)
+      {
+        if (precision < 6 || precision > 17)
+          throw std::invalid_argument("precision = " + std::to_string(precision) + ": digits in [6, 17]");
+        BatchOutcome outcome;
+        {
+          py::gil_scoped_release released;
+          outcome = runBatchFile(scenario_path, out_dir, precision);
+        }
+        return py::dict("code"_a = outcome.code, "report"_a = outcome.report, "errors"_a = outcome.errors,
+                        "rows"_a = outcome.rows);
+      },
+      "scenario_path"_a, "out_dir"_a, "precision"_a = 10,
+      "What tow_sim_batch --scenario PATH --out DIR does, in process: the same files, and {code (its exit code), "
+      "report (its stdout), errors (its stderr), rows}. A bad scenario is code 2, not an exception.");
 }
 
 void bindSteadyTow(py::module_& m)

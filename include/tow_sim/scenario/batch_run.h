@@ -61,6 +61,22 @@ void runScenario(const Scenario& scenario, std::ostream& series, std::ostream& s
                  const std::function<void(double t)>& progress = {}, const SaveStateSink& save_state = {},
                  int precision = 10);
 
+// What tow_sim_batch does with a scenario file and an output folder (the tool, the Python module's run_batch and
+// tow_sim_sweep's in-process runs): reads the scenario, writes DIR/timeseries.csv, shapes.csv, scenario.yaml,
+// events.csv and the state files, and returns the tool's exit code with what it says on stdout (`report`) and
+// stderr (`errors`), each line ending in a line break. `progress` (may be empty) gets each output time and the
+// scenario's duration [s].
+struct BatchOutcome
+{
+  int code = 0;           // 0 done; 2 bad scenario or saved initial state; 3 the run diverged; 4 cannot write
+  std::string report;     // stdout
+  std::string errors;     // stderr
+  long rows = 0;          // timeseries rows written
+  double duration = 0.0;  // [s] the scenario's (0 when it could not be read)
+};
+BatchOutcome runBatchFile(const std::string& scenario_path, const std::string& out_dir, int precision = 10,
+                          const std::function<void(double t, double duration)>& progress = {});
+
 // The scenario's run as runScenario starts it (the Python module's Run too): the scripted ship sampled
 // over the scenario's duration, the run with its commands and autopilot, started at t = 0 by the initial
 // shape or restored from the scenario's saved state (throws BadInitialState for one that cannot be read
