@@ -23,7 +23,7 @@ LAYERS = [
     ["added_mass", "vehicle"],
     ["chain_model"],
     ["chain_state", "chain_solver", "chain_jacobian", "rosenbrock_tableau", "run_report", "winch"],
-    ["chain", "implicit_stepper", "explicit_stepper", "jacobian_check", "modes"],
+    ["chain", "implicit_stepper", "explicit_stepper", "jacobian_check", "modes", "strumming"],
     ["simulator"],
     ["equilibrium", "ship_track", "odometry_check", "gnss_track", "depth_autopilot", "track_trail", "simulation_config"],
     ["tow_run"],

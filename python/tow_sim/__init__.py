@@ -22,6 +22,7 @@ from tow_sim._core import (  # noqa: F401  (the module's interface)
     response,
     run_batch,
     steady_tow,
+    strumming,
     towing_chart,
 )
 
@@ -37,5 +38,6 @@ __all__ = [
     "response",
     "run_batch",
     "steady_tow",
+    "strumming",
     "towing_chart",
 ]

@@ -6,44 +6,65 @@
 
 namespace tow_sim
 {
+namespace
+{
+// The cable's own keys, which every section takes too (cableParams adds the limits, strumming and the lists).
+ParamTable<CableParams> cableMaterialParams()
+{
+  using C = CableParams;
+  return ParamTable<C>()
+      .number("length", &C::length, "m", 0.0, 1e5, kOpen, "total cable length L")
+      .integer("segments", &C::segments, "-", 1, 100000, "number of rigid segments ν (segment length L/ν)")
+      .number("diameter", &C::diameter, "m", 0.0, 1.0, kOpen, "D")
+      .number("mass_per_length", &C::mass_per_length, "kg/m", 0.0, 1000.0, kOpen,
+              "mass per length in air (w = mass_per_length · g)")
+      .number("normal_drag_coefficient", &C::normal_drag_coefficient, "-", 0.0, 10.0, kClosed, "C_dn; C₂ = ½ρ C_dn D")
+      .number("tangential_drag_coefficient", &C::tangential_drag_coefficient, "-", 0.0, 1.0, kClosed,
+              "C_dt; C₁ = ½ρ C_dt π D")
+      .optionalNumber("c1", &C::c1, "N s^2/m^3", 0.0, 1e5, kClosed, "unset",
+                      "C₁ given directly (overrides tangential_drag_coefficient)")
+      .optionalNumber("c2", &C::c2, "N s^2/m^3", 0.0, 1e5, kClosed, "unset",
+                      "C₂ given directly (overrides normal_drag_coefficient)")
+      .number("added_mass_coefficient", &C::added_mass_coefficient, "-", 0.0, 10.0, kClosed,
+              "C_a; e = C_a ρ (πD²/4) d (Walton–Polachek)")
+      .choice("tangential_drag_model", &C::tangential_drag_model,
+              { { "pode", TangentialDragModel::kPode }, { "quadratic", TangentialDragModel::kQuadratic } },
+              "pode (the report's): C₁ d ‖u‖² along s against the tangential flow; quadratic: −C₁ d |u·s|(u·s) s")
+      .optionalNumber("safe_working_load", &C::safe_working_load, "N", 0.0, 1e9, kOpen, "unset",
+                      "the node's diagnostics WARN while a tension exceeds it")
+      .optionalNumber("breaking_load", &C::breaking_load, "N", 0.0, 1e9, kOpen, "unset",
+                      "≥ safe_working_load; the node's diagnostics report an ERROR while a tension exceeds it")
+      .boolean("break_at_breaking_load", &C::break_at_breaking_load,
+               "the cable parts where a tension first exceeds breaking_load (needs it); the vehicle side goes "
+               "on with a free end")
+      .optionalNumber("axial_stiffness", &C::axial_stiffness, "N", 0.0, 1e11, kOpen, "unset",
+                      "EA: set, the cable stretches and carries tension only, T = max(0, EA ε + c ε̇); "
+                      "unset, the rigid chain (the report's)")
+      .number("axial_damping", &C::axial_damping, "N s", 0.0, 1e10, kClosed,
+              "c of the elastic cable, the axial force per unit strain rate (needs axial_stiffness)")
+      .number("bending_stiffness", &C::bending_stiffness, "N m^2", 0.0, 1e9, kClosed,
+              "EI: a moment EI θ / ℓ̄ at each joint between two segments turned by θ, toward straight (ℓ̄ the "
+              "mean of their lengths; between sections, the two halves in series); 0, none (the report's)");
+}
+}  // namespace
+
 const ParamTable<CableParams>& cableParams()
 {
   using C = CableParams;
   static const ParamTable<C> table =
-      ParamTable<C>()
-          .number("length", &C::length, "m", 0.0, 1e5, kOpen, "total cable length L")
-          .integer("segments", &C::segments, "-", 1, 100000, "number of rigid segments ν (segment length L/ν)")
-          .number("diameter", &C::diameter, "m", 0.0, 1.0, kOpen, "D")
-          .number("mass_per_length", &C::mass_per_length, "kg/m", 0.0, 1000.0, kOpen,
-                  "mass per length in air (w = mass_per_length · g)")
-          .number("normal_drag_coefficient", &C::normal_drag_coefficient, "-", 0.0, 10.0, kClosed,
-                  "C_dn; C₂ = ½ρ C_dn D")
-          .number("tangential_drag_coefficient", &C::tangential_drag_coefficient, "-", 0.0, 1.0, kClosed,
-                  "C_dt; C₁ = ½ρ C_dt π D")
-          .optionalNumber("c1", &C::c1, "N s^2/m^3", 0.0, 1e5, kClosed, "unset",
-                          "C₁ given directly (overrides tangential_drag_coefficient)")
-          .optionalNumber("c2", &C::c2, "N s^2/m^3", 0.0, 1e5, kClosed, "unset",
-                          "C₂ given directly (overrides normal_drag_coefficient)")
-          .number("added_mass_coefficient", &C::added_mass_coefficient, "-", 0.0, 10.0, kClosed,
-                  "C_a; e = C_a ρ (πD²/4) d (Walton–Polachek)")
-          .choice("tangential_drag_model", &C::tangential_drag_model,
-                  { { "pode", TangentialDragModel::kPode }, { "quadratic", TangentialDragModel::kQuadratic } },
-                  "pode (the report's): C₁ d ‖u‖² along s against the tangential flow; quadratic: −C₁ d |u·s|(u·s) s")
-          .optionalNumber("safe_working_load", &C::safe_working_load, "N", 0.0, 1e9, kOpen, "unset",
-                          "the node's diagnostics WARN while a tension exceeds it")
-          .optionalNumber("breaking_load", &C::breaking_load, "N", 0.0, 1e9, kOpen, "unset",
-                          "≥ safe_working_load; the node's diagnostics report an ERROR while a tension exceeds it")
-          .boolean("break_at_breaking_load", &C::break_at_breaking_load,
-                   "the cable parts where a tension first exceeds breaking_load (needs it); the vehicle side goes "
-                   "on with a free end")
-          .optionalNumber("axial_stiffness", &C::axial_stiffness, "N", 0.0, 1e11, kOpen, "unset",
-                          "EA: set, the cable stretches and carries tension only, T = max(0, EA ε + c ε̇); "
-                          "unset, the rigid chain (the report's)")
-          .number("axial_damping", &C::axial_damping, "N s", 0.0, 1e10, kClosed,
-                  "c of the elastic cable, the axial force per unit strain rate (needs axial_stiffness)")
-          .number("bending_stiffness", &C::bending_stiffness, "N m^2", 0.0, 1e9, kClosed,
-                  "EI: a moment EI θ / ℓ̄ at each joint between two segments turned by θ, toward straight (ℓ̄ the "
-                  "mean of their lengths; between sections, the two halves in series); 0, none (the report's)")
+      cableMaterialParams()
+          .choice("strumming", &C::strumming,
+                  { { "none", StrummingLaw::kNone },
+                    { "vandiver", StrummingLaw::kVandiver },
+                    { "blevins", StrummingLaw::kBlevins } },
+                  "none (the report's); vandiver: the normal drag C_dn (or c2) times 1 + 1.043 (√2 A/D)^0.65 "
+                  "(Vandiver 1983); blevins: times 1 + 2.1 A/D (Blevins 1990): the cable strums in lock-in along "
+                  "its whole length (tow_sim_strumming says where it can)")
+          .number("strumming_amplitude", &C::strumming_amplitude, "-", 0.0, 3.0, kOpen,
+                  "A/D, the cross-flow amplitude of strumming over the diameter (1: about the largest measured on "
+                  "lightly damped cylinders); used with strumming")
+          .number("strouhal_number", &C::strouhal_number, "-", 0.0, 1.0, kOpen,
+                  "St: vortices shed at St |u_n| / D [Hz] (tow_sim_strumming); 0.2 for a bare circular cable")
           .custom("sections", "", "[]",
                   "each needs length and segments; lengths add up to length; ≤ 100000 segments in all; all "
                   "elastic or all rigid",

@@ -45,6 +45,20 @@ double CableParams::c2Value(const Environment& env) const
   return c2 ? *c2 : 0.5 * env.water_density * normal_drag_coefficient * diameter;
 }
 
+double CableParams::normalDragAmplification() const
+{
+  switch (strumming)
+  {
+    case StrummingLaw::kVandiver:
+      return 1.0 + 1.043 * std::pow(std::sqrt(2.0) * strumming_amplitude, 0.65);
+    case StrummingLaw::kBlevins:
+      return 1.0 + 2.1 * strumming_amplitude;
+    case StrummingLaw::kNone:
+      break;
+  }
+  return 1.0;
+}
+
 double EndElementParams::transverseInertia() const
 {
   if (transverse_inertia)

@@ -240,6 +240,56 @@ void bindModes(py::module_& m)
       "The natural modes about the steady tow (tow_sim_modes), in ascending natural frequency: dicts of period [s] "
       "(inf: decays without oscillating), frequency [rad/s], damping_ratio, dominant and shape ((nu + 1, 3) [m]).");
 }
+
+void bindStrumming(py::module_& m)
+{
+  m.def(
+      "strumming",
+      [](const SimulationConfig& c, double speed, std::optional<double> cable_out, const py::object& current,
+         double bandwidth)
+      {
+        const Eigen::Vector3d current_W = vector3(current, "current");
+        StrummingAnalysis a;
+        {
+          py::gil_scoped_release released;
+          a = steadyTowStrumming(c, speed, cable_out.value_or(c.cable.length), current_W, bandwidth);
+        }
+        py::dict segments, spans;
+        auto column = [](py::dict& out, const char* name, const auto& rows, auto field)
+        {
+          std::vector<std::decay_t<decltype(rows.front().*field)>> values;
+          for (const auto& r : rows)
+            values.push_back(r.*field);
+          out[name] = py::array(py::cast(values));
+        };
+        column(segments, "section", a.segments, &StrummingSegment::section);
+        column(segments, "span", a.segments, &StrummingSegment::span);
+        column(segments, "arc_length", a.segments, &StrummingSegment::arc_length);
+        column(segments, "depth", a.segments, &StrummingSegment::depth);
+        column(segments, "normal_speed", a.segments, &StrummingSegment::normal_speed);
+        column(segments, "shedding_frequency", a.segments, &StrummingSegment::shedding_frequency);
+        column(segments, "tension", a.segments, &StrummingSegment::tension);
+        column(segments, "wave_speed", a.segments, &StrummingSegment::wave_speed);
+        column(segments, "lowest_mode", a.segments, &StrummingSegment::lowest_mode);
+        column(segments, "highest_mode", a.segments, &StrummingSegment::highest_mode);
+        column(segments, "drag_amplification", a.segments, &StrummingSegment::drag_amplification);
+        column(spans, "start", a.spans, &StrummingSpan::start);
+        column(spans, "end", a.spans, &StrummingSpan::end);
+        column(spans, "travel_time", a.spans, &StrummingSpan::travel_time);
+        column(spans, "fundamental", a.spans, &StrummingSpan::fundamental);
+        column(spans, "lowest_mode", a.spans, &StrummingSpan::lowest_mode);
+        column(spans, "highest_mode", a.spans, &StrummingSpan::highest_mode);
+        column(spans, "dominant_mode", a.spans, &StrummingSpan::dominant_mode);
+        column(spans, "dominant_frequency", a.spans, &StrummingSpan::dominant_frequency);
+        column(spans, "power_in_length", a.spans, &StrummingSpan::power_in_length);
+        return py::dict("segments"_a = segments, "spans"_a = spans, "bandwidth"_a = a.bandwidth);
+      },
+      "config"_a, "speed"_a, "cable_out"_a = py::none(), "current"_a = py::make_tuple(0.0, 0.0, 0.0),
+      "bandwidth"_a = 0.2,
+      "Where the steady tow's cable sheds vortices and which string modes it can lock into (tow_sim_strumming): "
+      "{'segments': strumming.csv's columns but segment, 'spans': strumming_spans.csv's, 'bandwidth': b}; frequencies "
+      "[Hz].");
+}
 }  // namespace
 }  // namespace tow_sim::python
 
@@ -255,4 +305,5 @@ PYBIND11_MODULE(_core, m)
   tow_sim::python::bindPlan(m);
   tow_sim::python::bindModes(m);
   tow_sim::python::bindResponse(m);
+  tow_sim::python::bindStrumming(m);
 }

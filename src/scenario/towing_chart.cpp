@@ -88,6 +88,17 @@ std::vector<Mode> steadyTowModes(const SimulationConfig& config, double speed, d
   return naturalModes(run->model(), sim.geometry(), sim.data(), sim.time(), sim.firstJoint(), state.x, state.v);
 }
 
+StrummingAnalysis steadyTowStrumming(const SimulationConfig& config, double speed, double cable_out,
+                                     const Eigen::Vector3d& current_W, double bandwidth)
+{
+  const std::unique_ptr<TowRun> run = steadyTowRun(config, speed, cable_out, current_W);
+  const TowSnapshot snap = run->snapshot();
+  const Simulator& sim = run->simulator();
+  // In the steady tow every point moves with the ship, along +x.
+  const Eigen::Matrix3Xd velocities = Eigen::Vector3d(speed, 0.0, 0.0).replicate(1, snap.joints.cols());
+  return strummingAnalysis(run->model(), sim.geometry(), sim.time(), snap.joints, velocities, snap.tensions, bandwidth);
+}
+
 Eigen::Vector3d towPointMotion(const std::string& input, const Eigen::Vector3d& tow_point_S)
 {
   if (input == "heave")

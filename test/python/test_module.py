@@ -263,3 +263,44 @@ def test_the_response_is_tow_sim_responses(tmp_path):
     assert np.allclose(got["vehicle_heave"], 20.0 * heave["vehicle_heave"], rtol=1e-6)
     with pytest.raises(ValueError, match="input 'roll': one of heave, surge, sway, pitch"):
         tow_sim.response(tow_sim.load_config(CONFIG), speed=2.0, input="roll", periods=[4.0])
+
+
+TWO_PART = """cable:
+  diameter: 0.0173
+  mass_per_length: 1.2
+  sections:
+    - {length: 600.0, segments: 60}
+    - {length: 100.0, segments: 20, diameter: 0.02, mass_per_length: 0.35}
+  bodies:
+    - {at: 600.0, mass: 1000.0, displaced_volume: 0.13, drag_area: 0.4, added_mass: 100.0}
+"""
+
+
+def test_the_strumming_analysis_is_tow_sim_strummings(tmp_path):
+    config = tmp_path / "c.yaml"
+    config.write_text(TWO_PART)
+    subprocess.run([os.path.join(BIN, "tow_sim_strumming"), "--config", str(config), "--speed", "2", "--current",
+                    "0.3:90", "--bandwidth", "0.25", "--out", str(tmp_path)], check=True, capture_output=True)
+    rows, spans = read_csv(tmp_path / "strumming.csv"), read_csv(tmp_path / "strumming_spans.csv")
+    got = tow_sim.strumming(tow_sim.load_config(str(config)), speed=2.0, current=(0.0, 0.3, 0.0), bandwidth=0.25)
+    assert got["bandwidth"] == 0.25 and len(got["segments"]["tension"]) == 80 and len(got["spans"]["start"]) == 2
+    for name, values in got["segments"].items():
+        assert np.allclose(values, rows[name], rtol=1e-8, atol=1e-12), name
+    for name, values in got["spans"].items():
+        assert np.allclose(values, spans[name], rtol=1e-8, atol=1e-12), name
+    assert list(got["segments"]["section"][58:62]) == [0, 0, 1, 1] and spans["end"][0] == pytest.approx(600.0)
+    # The cross current sheds vortices all along; the tether below the clump is a string of its own.
+    assert (got["segments"]["shedding_frequency"] > 0).all() and (got["spans"]["dominant_mode"] > 0).all()
+    with pytest.raises(ValueError, match="bandwidth"):
+        tow_sim.strumming(tow_sim.load_config(str(config)), speed=2.0, bandwidth=1.0)
+
+
+def test_a_strumming_cable_tows_shallower():
+    bare = tow_sim.Config.from_dict({"cable": {"length": 300.0, "segments": 30}})
+    strums = tow_sim.Config.from_dict({"cable": {"length": 300.0, "segments": 30, "strumming": "vandiver"}})
+    a, b = tow_sim.steady_tow(bare, speed=2.0), tow_sim.steady_tow(strums, speed=2.0)
+    assert b.depth < 0.9 * a.depth  # more normal drag: a flatter cable
+    assert tow_sim.strumming(strums, speed=2.0)["segments"]["drag_amplification"][0] == pytest.approx(
+        1.0 + 1.043 * 2.0 ** 0.325)
+    with pytest.raises(ValueError, match="cable.strumming_amplitude"):
+        tow_sim.Config.from_dict({"cable": {"strumming": "blevins", "strumming_amplitude": 0.0}})

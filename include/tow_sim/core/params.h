@@ -21,6 +21,15 @@ enum class TangentialDragModel
   kQuadratic  // -C1 d |u.s| (u.s) s
 };
 
+// The normal drag of a strumming cable (physics.md §13, (P55)): none (the report's), or amplified by a
+// published empirical law of the cross-flow amplitude A/D.
+enum class StrummingLaw
+{
+  kNone,
+  kVandiver,  // Vandiver (1983): 1 + 1.043 (2 A_rms / D)^0.65, A_rms = A / sqrt(2)
+  kBlevins    // Blevins (1990): 1 + 2.1 A / D
+};
+
 // One point of a current profile: the current at a depth.
 struct CurrentSample
 {
@@ -89,6 +98,11 @@ struct CableParams
   double axial_damping = 0.0;             // [N s] c, the axial force per unit strain rate, >= 0 .. 1e10
   // Bending (physics.md §11): a restoring moment at each joint between two segments (0: none, the report's).
   double bending_stiffness = 0.0;  // [N m^2] EI, >= 0 .. 1e9
+  // Strumming (physics.md §13): the vortices' shedding frequency St |u_n| / D, and while the cable strums
+  // (strumming set) its normal drag C2 times the law's amplification at the amplitude A/D.
+  StrummingLaw strumming = StrummingLaw::kNone;
+  double strumming_amplitude = 1.0;  // [-] A/D, the cross-flow amplitude over the diameter, > 0 .. 3
+  double strouhal_number = 0.2;      // [-] St, > 0 .. 1
 
   bool elastic() const { return axial_stiffness.has_value(); }
   // [N] the tension of a segment of rest length rest [m] at length length [m] stretching at rate [m/s]:
@@ -101,7 +115,8 @@ struct CableParams
 
   double segmentLength() const { return length / segments; }
   double c1Value(const Environment& env) const;  // [N s^2/m^3]
-  double c2Value(const Environment& env) const;  // [N s^2/m^3]
+  double c2Value(const Environment& env) const;  // [N s^2/m^3], the cable at rest in the flow
+  double normalDragAmplification() const;        // [-] of strumming (P55): 1 without it
 };
 
 // The simple rigid end element (element nu+1) of the cable core: an axisymmetric rigid body on the

@@ -10,6 +10,7 @@
 
 #include "tow_sim/config/config.h"
 #include "tow_sim/core/analysis/modes.h"
+#include "tow_sim/core/analysis/strumming.h"
 #include "tow_sim/core/run/tow_run.h"
 
 namespace tow_sim
@@ -49,6 +50,12 @@ std::vector<Mode> steadyTowModes(const SimulationConfig& config, double speed, d
 std::vector<MotionResponse> steadyTowResponse(const SimulationConfig& config, double speed, double cable_out,
                                               const Eigen::Vector3d& current_W, const Eigen::Vector3d& input,
                                               const std::vector<double>& periods);
+
+// Where that steady tow's cable sheds vortices and which string modes the shedding can lock into, with the
+// lock-in band f_s (1 +- bandwidth) (strumming.h; tow_sim_strumming). Throws as steadyTow, and
+// std::invalid_argument for a bandwidth outside [0, 1).
+StrummingAnalysis steadyTowStrumming(const SimulationConfig& config, double speed, double cable_out,
+                                     const Eigen::Vector3d& current_W, double bandwidth);
 
 // The tow point's translation [m] per unit of the ship's motion `input`, world at heading 0: heave (0, 0, 1), surge
 // (1, 0, 0), sway (0, 1, 0) per metre, or pitch (REP-103, bow down positive) y x tow_point_S per radian,

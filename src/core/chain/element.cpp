@@ -42,7 +42,7 @@ CableSegmentModel CableSegmentModel::fromParams(const CableParams& cable, const 
   m.net_weight = (cable.mass_per_length - env.water_density * area) * env.gravity * m.length;  // (w - b) d
   const double wet = env.water_density > 0.0 ? 1.0 : 0.0;  // vacuum: no drag even for given C1, C2
   m.c1 = wet * cable.c1Value(env);
-  m.c2 = wet * cable.c2Value(env);
+  m.c2 = wet * cable.c2Value(env) * cable.normalDragAmplification();  // strumming: (P55)
   m.added_mass = cable.added_mass_coefficient * env.water_density * area * m.length;
   m.displaced_mass = env.water_density * area * m.length;
   m.tangential_model = cable.tangential_drag_model;
