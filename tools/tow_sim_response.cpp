@@ -1,12 +1,16 @@
 // tow_sim_response: the steady tow's response to the ship's motion in the frequency domain, without roscore.
 //   tow_sim_response --config FILE.yaml --speed U [--cable-out L] --input heave|surge|sway|pitch
 //                    --periods FROM:TO:STEP [--tow-point X,Y,Z] --out DIR
+//   tow_sim_response --scenario FILE.yaml [--cable-out L] --out DIR
 // Writes DIR/response.csv: per period [s], the amplitude per metre (per radian for pitch) of input and the phase
 // [deg] relative to the input's displacement of the vehicle's heave, surge, sway [m], pitch [rad] and of the
 // tension at the ship and at the vehicle [N] (docs/tools.md, "Response to ship motion"). The tow point [m] is in
 // the ship frame (FLU) from the ship's reference point (default -20,0,0): the ship's pitch (REP-103, bow down
-// positive) moves it by pitch x its position. The rigid cable only. Exit codes: 0 done; 2 bad arguments or
-// configuration; 3 no steady tow found; 4 cannot write DIR.
+// positive) moves it by pitch x its position. The second form takes a scenario's sea, ship (speed, heading, RAOs,
+// tow point) and configuration and writes DIR/sea_state.csv: per wave component, the amplitudes [m, rad, N] of
+// the tow point's heave and the outputs above, and prints their standard deviations and significant amplitudes
+// (docs/tools.md, "In a sea state"). The rigid cable only. Exit codes: 0 done; 2 bad arguments, configuration or
+// scenario; 3 no steady tow found; 4 cannot write DIR.
 #include <cmath>
 #include <complex>
 #include <cstdio>
@@ -14,6 +18,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -21,6 +26,7 @@
 #include <vector>
 
 #include "tow_sim/core/constants.h"
+#include "tow_sim/scenario/sea_state.h"
 #include "tow_sim/scenario/towing_chart.h"
 
 namespace
@@ -31,7 +37,8 @@ int usage(const std::string& why)
 {
   std::fprintf(stderr,
                "tow_sim_response: %s\nusage: tow_sim_response --config FILE.yaml --speed U [--cable-out L] --input "
-               "heave|surge|sway|pitch --periods FROM:TO:STEP [--tow-point X,Y,Z] --out DIR\n",
+               "heave|surge|sway|pitch --periods FROM:TO:STEP [--tow-point X,Y,Z] --out DIR\n"
+               "       tow_sim_response --scenario FILE.yaml [--cable-out L] --out DIR\n",
                why.c_str());
   return 2;
 }
@@ -73,16 +80,71 @@ int write(const std::string& dir, const std::vector<MotionResponse>& rows)
   std::printf("tow_sim_response: wrote %s/response.csv (%zu periods)\n", dir.c_str(), rows.size());
   return 0;
 }
+
+int writeSeaState(const std::string& dir, const SeaStateResponse& r)
+{
+  std::error_code made;
+  std::filesystem::create_directories(dir, made);
+  std::ofstream out(dir + "/sea_state.csv");
+  if (!out)
+  {
+    std::fprintf(stderr, "tow_sim_response: cannot write into %s\n", dir.c_str());
+    return 4;
+  }
+  out.precision(10);
+  out << "frequency,encounter_frequency,direction,amplitude";
+  for (const char* name : SeaStateResponse::names)
+    out << ',' << name << ',' << name << "_phase";
+  out << '\n';
+  for (const SeaStateComponent& c : r.components)
+  {
+    out << c.frequency << ',' << c.encounter_frequency << ',' << c.direction * 180.0 / kPi << ',' << c.amplitude;
+    for (const std::complex<double>& h : c.outputs)
+      out << ',' << c.amplitude * std::abs(h) << ',' << std::arg(h) * 180.0 / kPi;
+    out << '\n';
+  }
+  std::printf("%-16s %16s %22s\n", "output", "std deviation", "significant amplitude");
+  for (int j = 0; j < kSeaStateOutputs; ++j)
+    std::printf("%-16s %16.6g %22.6g\n", SeaStateResponse::names[j], r.standard_deviation[j],
+                2.0 * r.standard_deviation[j]);
+  std::printf("tow_sim_response: wrote %s/sea_state.csv (%zu wave components, ship at %.3g m/s)\n", dir.c_str(),
+              r.components.size(), r.speed);
+  return 0;
+}
+
+int seaState(const std::string& scenario_path, const std::string& cable_out, const std::string& out_dir)
+{
+  SeaStateResponse r;
+  try
+  {
+    const Scenario scenario = loadScenarioFile(scenario_path);
+    std::optional<double> l;
+    if (!cable_out.empty())
+      l = parseRange(cable_out, "--cable-out").at(0);
+    r = seaStateResponse(scenario, l);
+  }
+  catch (const std::invalid_argument& e)
+  {
+    return usage(e.what());
+  }
+  catch (const std::exception& e)
+  {
+    std::fprintf(stderr, "tow_sim_response: no steady tow: %s\n", e.what());
+    return 3;
+  }
+  return writeSeaState(out_dir, r);
+}
 }  // namespace
 
 int main(int argc, char** argv)
 {
-  std::string config_path, speed, cable_out, input, periods, tow_point = "-20,0,0", out_dir;
+  std::string config_path, scenario, speed, cable_out, input, periods, tow_point, out_dir;
   for (int i = 1; i < argc; ++i)
   {
     const bool has_value = i + 1 < argc;
     std::string* target = nullptr;
     for (auto [flag, field] : { std::pair<const char*, std::string*>{ "--config", &config_path },
+                                { "--scenario", &scenario },
                                 { "--speed", &speed },
                                 { "--cable-out", &cable_out },
                                 { "--input", &input },
@@ -95,6 +157,11 @@ int main(int argc, char** argv)
       return usage(std::string("unknown argument '") + argv[i] + "'");
     *target = argv[++i];
   }
+  if (!scenario.empty())
+    return config_path.empty() && speed.empty() && input.empty() && periods.empty() && tow_point.empty() &&
+                   !out_dir.empty()
+               ? seaState(scenario, cable_out, out_dir)
+               : usage("--scenario takes only --cable-out and --out");
   if (config_path.empty() || speed.empty() || input.empty() || periods.empty() || out_dir.empty())
     return usage("--config, --speed, --input, --periods and --out are needed");
   std::vector<MotionResponse> rows;
@@ -103,7 +170,7 @@ int main(int argc, char** argv)
     const SimulationConfig config = loadConfigFile(config_path);
     const double u = parseRange(speed, "--speed").at(0);
     const double l = cable_out.empty() ? config.cable.length : parseRange(cable_out, "--cable-out").at(0);
-    const Eigen::Vector3d motion = towPointMotion(input, towPoint(tow_point));
+    const Eigen::Vector3d motion = towPointMotion(input, towPoint(tow_point.empty() ? "-20,0,0" : tow_point));
     rows = steadyTowResponse(config, u, l, Eigen::Vector3d::Zero(), motion, parseRange(periods, "--periods"));
   }
   catch (const std::invalid_argument& e)

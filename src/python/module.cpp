@@ -14,6 +14,7 @@
 #include "tow_sim/config/config.h"
 #include "tow_sim/scenario/batch_run.h"
 #include "tow_sim/scenario/scenario.h"
+#include "tow_sim/scenario/sea_state.h"
 #include "tow_sim/scenario/towing_chart.h"
 
 namespace py = pybind11;
@@ -290,6 +291,47 @@ void bindStrumming(py::module_& m)
       "{'segments': strumming.csv's columns but segment, 'spans': strumming_spans.csv's, 'bandwidth': b}; frequencies "
       "[Hz].");
 }
+
+void bindSeaState(py::module_& m)
+{
+  m.def(
+      "sea_state",
+      [](const Scenario& scenario, std::optional<double> cable_out)
+      {
+        SeaStateResponse r;
+        {
+          py::gil_scoped_release released;
+          r = seaStateResponse(scenario, cable_out);
+        }
+        py::dict components, deviation;
+        std::vector<double> frequency, encounter, direction, amplitude;
+        for (const SeaStateComponent& c : r.components)
+        {
+          frequency.push_back(c.frequency);
+          encounter.push_back(c.encounter_frequency);
+          direction.push_back(c.direction);
+          amplitude.push_back(c.amplitude);
+        }
+        components["frequency"] = py::array(py::cast(frequency));
+        components["encounter_frequency"] = py::array(py::cast(encounter));
+        components["direction"] = py::array(py::cast(direction));
+        components["amplitude"] = py::array(py::cast(amplitude));
+        for (int j = 0; j < kSeaStateOutputs; ++j)
+        {
+          std::vector<std::complex<double>> values;
+          for (const SeaStateComponent& c : r.components)
+            values.push_back(c.outputs[j]);
+          components[SeaStateResponse::names[j]] = py::array(py::cast(values));
+          deviation[SeaStateResponse::names[j]] = r.standard_deviation[j];
+        }
+        return py::dict("speed"_a = r.speed, "components"_a = components, "standard_deviation"_a = deviation);
+      },
+      "scenario"_a, "cable_out"_a = py::none(),
+      "The steady tow in the scenario's sea, in the frequency domain (tow_sim_response --scenario): {'speed', "
+      "'components': per wave component frequency, encounter_frequency [rad/s], direction [rad, relative to the "
+      "heading], amplitude [m] and the outputs' complex amplitudes per metre of wave, 'standard_deviation': per "
+      "output}.");
+}
 }  // namespace
 }  // namespace tow_sim::python
 
@@ -306,4 +348,5 @@ PYBIND11_MODULE(_core, m)
   tow_sim::python::bindModes(m);
   tow_sim::python::bindResponse(m);
   tow_sim::python::bindStrumming(m);
+  tow_sim::python::bindSeaState(m);
 }

@@ -304,3 +304,26 @@ def test_a_strumming_cable_tows_shallower():
         1.0 + 1.043 * 2.0 ** 0.325)
     with pytest.raises(ValueError, match="cable.strumming_amplitude"):
         tow_sim.Config.from_dict({"cable": {"strumming": "blevins", "strumming_amplitude": 0.0}})
+
+
+def test_the_sea_state_is_tow_sim_responses(tmp_path):
+    scenario = os.path.join(SOURCE, "scenarios", "head_seas.yaml")
+    subprocess.run([os.path.join(BIN, "tow_sim_response"), "--scenario", scenario, "--cable-out", "200",
+                    "--out", str(tmp_path)], check=True, capture_output=True)
+    want = read_csv(tmp_path / "sea_state.csv")
+    got = tow_sim.sea_state(tow_sim.load_scenario(scenario), cable_out=200.0)
+    assert got["speed"] == 2.0 and len(got["components"]["frequency"]) == 100
+    for name in ("frequency", "encounter_frequency", "amplitude"):
+        assert np.allclose(got["components"][name], want[name], rtol=1e-9), name
+    amplitude = got["components"]["amplitude"]
+    for name, values in got["components"].items():
+        if values.dtype == complex:
+            assert np.allclose(amplitude * np.abs(values), want[name], rtol=1e-8, atol=1e-15), name
+    # Head seas: the ship meets the waves faster than they come; the standard deviations sum the components.
+    assert (got["components"]["encounter_frequency"] > got["components"]["frequency"]).all()
+    heave = got["components"]["vehicle_heave"]
+    assert got["standard_deviation"]["vehicle_heave"] == pytest.approx(np.sqrt(np.sum(0.5 * amplitude**2 *
+                                                                                       np.abs(heave)**2)))
+    calm = tow_sim.Scenario.from_dict({"ship": {"manoeuvres": [{"type": "straight", "speed": 2.0}]}})
+    with pytest.raises(ValueError, match="a sea state needs waves"):
+        tow_sim.sea_state(calm)
