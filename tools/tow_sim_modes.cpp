@@ -2,7 +2,7 @@
 //   tow_sim_modes --config FILE.yaml --speed U [--cable-out L] [--count N] [--out DIR]
 // Prints the first N modes (default 10) and, with --out, writes DIR/modes.csv (index, period [s], frequency
 // [rad/s], damping_ratio, dominant) and DIR/mode_shapes.csv (mode, joint, dx, dy, dz: the joints' displacements,
-// the largest 1) for those modes (docs/tools.md, "Natural modes"). The rigid cable only. Exit codes: 0 done;
+// the largest 1) for those modes (docs/tools.md, "Natural modes"). Exit codes: 0 done;
 // 2 bad arguments or configuration; 3 no steady tow found; 4 cannot write DIR.
 #include <algorithm>
 #include <cmath>

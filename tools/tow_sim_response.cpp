@@ -9,7 +9,7 @@
 // positive) moves it by pitch x its position. The second form takes a scenario's sea, ship (speed, heading, RAOs,
 // tow point) and configuration and writes DIR/sea_state.csv: per wave component, the amplitudes [m, rad, N] of
 // the tow point's heave and the outputs above, and prints their standard deviations and significant amplitudes
-// (docs/tools.md, "In a sea state"). The rigid cable only. Exit codes: 0 done; 2 bad arguments, configuration or
+// (docs/tools.md, "In a sea state"). Exit codes: 0 done; 2 bad arguments, configuration or
 // scenario; 3 no steady tow found; 4 cannot write DIR.
 #include <cmath>
 #include <complex>

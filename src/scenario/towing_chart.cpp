@@ -78,10 +78,6 @@ TowSnapshot steadyTow(const SimulationConfig& config, double speed, double cable
 std::vector<Mode> steadyTowModes(const SimulationConfig& config, double speed, double cable_out,
                                  const Eigen::Vector3d& current_W)
 {
-  if (config.cable.elastic())
-    throw std::invalid_argument(
-        "natural modes: the rigid cable only (cable.axial_stiffness: 0); an elastic "
-        "segment's stretch is not one of the coordinates");
   const std::unique_ptr<TowRun> run = steadyTowRun(config, speed, cable_out, current_W);
   const Simulator& sim = run->simulator();
   const ChainState state = sim.state();

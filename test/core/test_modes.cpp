@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "chain_fixtures.h"
+#include "tow_sim/core/analysis/equilibrium.h"
 #include "tow_sim/core/analysis/modes.h"
 #include "tow_sim/core/chain/chain_state.h"
 #include "tow_sim/core/constants.h"
@@ -154,13 +155,66 @@ TEST(Modes, TheSteadyTowsVehicleYawModeRingsAtItsPeriodAndDampingInAFreeDecay)
   EXPECT_NEAR(zeta / yaw_mode->damping_ratio, 1.0, 0.02);
 }
 
-TEST(Modes, AnElasticCableIsRefusedByName)
+// A bar fixed at the top with a mass M at its lower end vibrates along its length at beta L tan(beta L) = mu L / M,
+// omega = beta sqrt(EA / mu) (the bar's mass mu L; axial waves do not feel the static tension of a linear spring).
+// An elastic cable hanging in vacuum from its tow point, its end body M, stretched to rest by its own weight.
+TEST(Modes, AnElasticCableHangingInVacuumStretchesAtTheBarsFrequencies)
 {
   CableParams cable;
-  cable.axial_stiffness = 1e7;
+  cable.length = 100.0;
+  cable.segments = 50;
+  cable.mass_per_length = 2.0;
+  cable.axial_stiffness = 1e6;
   EndElementParams end;
+  end.mass = 100.0;
   Environment env;
-  EXPECT_THROW(hangingModes(cable, end, env), std::invalid_argument);
+  env.water_density = 0.0;
+  const auto model = test::makeModel(cable, end, env);
+  const EquilibriumResult eq = steadyTowEquilibrium(*model, 0.0, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());
+  const std::vector<Mode> modes = naturalModes(*model, model->initialGeometry(), model->initialData(0.0), 0.0,
+                                               ShipEndState(), eq.state.x, eq.state.v);
+  std::vector<double> axial;
+  for (const Mode& m : modes)
+    if (m.dominant == "axial")
+      axial.push_back(m.frequency);
+  ASSERT_GE(axial.size(), 2u);
+  const double ratio = cable.mass_per_length * cable.length / end.mass, c = std::sqrt(1e6 / cable.mass_per_length);
+  for (int k = 0; k < 2; ++k)
+  {
+    double lo = k * kPi + 1e-9, hi = k * kPi + 0.5 * kPi - 1e-9;  // the root of x tan x = ratio in this branch
+    for (int i = 0; i < 200; ++i)
+    {
+      const double mid = 0.5 * (lo + hi);
+      (mid * std::tan(mid) < ratio ? lo : hi) = mid;
+    }
+    const double expected = 0.5 * (lo + hi) * c / cable.length;
+    std::printf("axial mode %d: %.6f rad/s, the bar's %.6f rad/s (%.2e)\n", k + 1, axial[k], expected,
+                axial[k] / expected - 1.0);
+    EXPECT_NEAR(axial[k] / expected, 1.0, 1e-3) << k;
+  }
+  // The pendulum's swing is far slower and not axial; the cable hangs straight, so nothing couples.
+  EXPECT_NE(modes.front().dominant, "axial");
+}
+
+// A stiff elastic cable answers the ship's heave as the rigid chain does: the response converges as 1/EA.
+TEST(Modes, AStiffElasticCablesResponseIsTheRigidChains)
+{
+  SimulationConfig rigid = test::shortTightTow(), stiff = rigid;
+  stiff.cable.axial_stiffness = 1e10;
+  const std::vector<double> periods = { 5.0, 10.0 };
+  const auto a = steadyTowResponse(rigid, 2.0, 200.0, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ(), periods);
+  const auto b = steadyTowResponse(stiff, 2.0, 200.0, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ(), periods);
+  for (size_t i = 0; i < periods.size(); ++i)
+  {
+    std::printf("heave response at %.0f s: rigid %.6f m/m, %.4f N/m at the ship; EA 1e10 %.6f m/m, %.4f N/m\n",
+                periods[i], std::abs(a[i].heave), std::abs(a[i].tension_ship), std::abs(b[i].heave),
+                std::abs(b[i].tension_ship));
+    EXPECT_LT(std::abs(b[i].heave - a[i].heave), 1e-3 * std::abs(a[i].heave)) << periods[i];
+    EXPECT_LT(std::abs(b[i].pitch - a[i].pitch), 1e-3 * std::abs(a[i].pitch)) << periods[i];
+    EXPECT_LT(std::abs(b[i].tension_ship - a[i].tension_ship), 1e-3 * std::abs(a[i].tension_ship)) << periods[i];
+    EXPECT_LT(std::abs(b[i].tension_vehicle - a[i].tension_vehicle), 1e-3 * std::abs(a[i].tension_vehicle))
+        << periods[i];
+  }
 }
 
 }  // namespace tow_sim

@@ -41,7 +41,7 @@ struct SeaStateResponse
 // The scenario's sea (environment.waves: regular or jonswap) about the steady tow at the scenario's initial
 // speed and heading with cable_out [m] (default the configuration's), the ship moving by its RAOs (the
 // scenario's rao_file or the generic vessel; none with ship.wave_response false) and the tow point at
-// tow_point_S. Throws std::invalid_argument for calm water or an elastic cable, and as steadyTow.
+// tow_point_S. Throws std::invalid_argument for calm water, and as steadyTow.
 SeaStateResponse seaStateResponse(const Scenario& scenario, std::optional<double> cable_out = std::nullopt);
 
 }  // namespace tow_sim

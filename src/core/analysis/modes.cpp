@@ -16,21 +16,44 @@ namespace tow_sim
 {
 namespace
 {
-// Each element's axis s and the two directions its aft joint moves in when it turns: b[0] in the vertical plane
-// through s (turning about the horizontal n normal to s), b[1] out of it (turning about m = s x n).
+// One coordinate of the small motions: element e's aft joint, and every joint aft of it, moves by scale * q along
+// `direction`. Turning about n (in-plane) or m (out-of-plane) by the angle q [rad]: direction axis x s, scale the
+// element's length. Stretching an elastic segment by q [m]: direction s, scale 1.
+struct Coordinate
+{
+  enum class Kind
+  {
+    kInPlane,
+    kOutOfPlane,
+    kStretch
+  };
+  Eigen::Index element = 0;
+  Kind kind = Kind::kInPlane;
+  Eigen::Vector3d axis = Eigen::Vector3d::Zero();  // of the turn (zero for a stretch)
+  Eigen::Vector3d direction = Eigen::Vector3d::Zero();
+  double scale = 1.0;
+  double stretch = 0.0;  // [m] a stretch coordinate's segment: its length less its rest length
+};
+
+// Each element's axis s, the horizontal n normal to it and m = s x n, its length, and the coordinates: two turns
+// per element, in element order, and a stretch after them for an elastic cable segment.
 struct ElementFrames
 {
   std::vector<Eigen::Vector3d> s, n, m;
   std::vector<double> length;
+  std::vector<Coordinate> coordinates;
 };
 
-ElementFrames framesOf(const ChainGeometry& geometry, const ShipEndState& ship, const Eigen::Matrix3Xd& x)
+ElementFrames framesOf(const ChainModel& model, const ChainGeometry& geometry, const ShipEndState& ship,
+                       const Eigen::Matrix3Xd& x)
 {
   ElementFrames f;
   for (Eigen::Index e = 0; e < x.cols(); ++e)
   {
     const Eigen::Vector3d fore = e == 0 ? ship.p_W : Eigen::Vector3d(x.col(e - 1));
-    const double l = geometry.elementLength(static_cast<int>(e));
+    // A stretching segment turns at its actual length; a rigid one is its length.
+    const bool stretches = model.elastic() && e < geometry.segments;
+    const double l = stretches ? (x.col(e) - fore).norm() : geometry.elementLength(static_cast<int>(e));
     const Eigen::Vector3d s = (x.col(e) - fore) / l;
     Eigen::Vector3d n = Eigen::Vector3d::UnitZ().cross(s);
     n = n.norm() > 1e-9 ? Eigen::Vector3d(n.normalized()) : Eigen::Vector3d::UnitY();  // a vertical element
@@ -38,58 +61,62 @@ ElementFrames framesOf(const ChainGeometry& geometry, const ShipEndState& ship, 
     f.n.push_back(n);
     f.m.push_back(s.cross(n));
     f.length.push_back(l);
+    f.coordinates.push_back({ e, Coordinate::Kind::kInPlane, n, n.cross(s), l });
+    f.coordinates.push_back({ e, Coordinate::Kind::kOutOfPlane, s.cross(n), s.cross(n).cross(s), l });
+    if (stretches)
+      f.coordinates.push_back({ e, Coordinate::Kind::kStretch, Eigen::Vector3d::Zero(), s, 1.0,
+                                l - geometry.elementLength(static_cast<int>(e)) });
   }
   return f;
 }
 
-// The joints with element e's axis turned by the angle q about axis (n or m): the joints aft move with it.
-Eigen::Matrix3Xd turned(const Eigen::Matrix3Xd& x, const ElementFrames& f, const ShipEndState& ship, Eigen::Index e,
-                        const Eigen::Vector3d& axis, double q)
+// The joints with coordinate c moved to q: turned exactly (its length kept) or stretched; the joints aft move with it.
+Eigen::Matrix3Xd moved(const Eigen::Matrix3Xd& x, const ElementFrames& f, const ShipEndState& ship, const Coordinate& c,
+                       double q)
 {
   Eigen::Matrix3Xd out = x;
+  const Eigen::Index e = c.element;
+  const size_t i = static_cast<size_t>(e);
   const Eigen::Vector3d fore = e == 0 ? ship.p_W : Eigen::Vector3d(x.col(e - 1));
   const Eigen::Vector3d shift =
-      fore + f.length[static_cast<size_t>(e)] * (Eigen::AngleAxisd(q, axis) * f.s[static_cast<size_t>(e)]) - x.col(e);
+      c.kind == Coordinate::Kind::kStretch
+          ? Eigen::Vector3d(q * f.s[i])
+          : Eigen::Vector3d(fore + f.length[i] * (Eigen::AngleAxisd(q, c.axis) * f.s[i]) - x.col(e));
   out.rightCols(x.cols() - e).colwise() += shift;
   return out;
 }
 
-// The joints' velocities with element e's axis turning at the rate w about axis: the joints aft move with it.
-Eigen::Matrix3Xd turning(const Eigen::Matrix3Xd& v, const ElementFrames& f, Eigen::Index e, const Eigen::Vector3d& axis,
-                         double w)
+// The joints' velocities with coordinate c changing at the rate w: the joints aft move with it.
+Eigen::Matrix3Xd moving(const Eigen::Matrix3Xd& v, const Coordinate& c, double w)
 {
   Eigen::Matrix3Xd out = v;
-  out.rightCols(v.cols() - e).colwise() +=
-      f.length[static_cast<size_t>(e)] * w * axis.cross(f.s[static_cast<size_t>(e)]);
+  out.rightCols(v.cols() - c.element).colwise() += c.scale * w * c.direction;
   return out;
 }
 
-// The angles' accelerations (two per element: about n, about m) from the joints' accelerations.
-Eigen::VectorXd angularAccelerations(const ElementFrames& f, const ShipEndState& ship, const Eigen::Matrix3Xd& a)
+// The coordinates' accelerations from the joints' accelerations.
+Eigen::VectorXd coordinateAccelerations(const ElementFrames& f, const ShipEndState& ship, const Eigen::Matrix3Xd& a)
 {
-  Eigen::VectorXd q(2 * a.cols());
-  for (Eigen::Index e = 0; e < a.cols(); ++e)
+  Eigen::VectorXd q(f.coordinates.size());
+  for (size_t k = 0; k < f.coordinates.size(); ++k)
   {
-    const size_t i = static_cast<size_t>(e);
-    const Eigen::Vector3d da = a.col(e) - (e == 0 ? ship.a_W : Eigen::Vector3d(a.col(e - 1)));
-    q(2 * e) = da.dot(f.n[i].cross(f.s[i])) / f.length[i];
-    q(2 * e + 1) = da.dot(f.m[i].cross(f.s[i])) / f.length[i];
+    const Coordinate& c = f.coordinates[k];
+    const Eigen::Vector3d da = a.col(c.element) - (c.element == 0 ? ship.a_W : Eigen::Vector3d(a.col(c.element - 1)));
+    q(static_cast<Eigen::Index>(k)) = da.dot(c.direction) / c.scale;
   }
   return q;
 }
 
-// The joints' displacements (complex) of a mode from its angles.
-Eigen::Matrix3Xcd jointDisplacements(const ElementFrames& f, const Eigen::VectorXcd& angles)
+// The joints' displacements (complex) of a mode from its coordinates.
+Eigen::Matrix3Xcd jointDisplacements(const ElementFrames& f, const Eigen::VectorXcd& q)
 {
-  const Eigen::Index n = angles.size() / 2;
-  Eigen::Matrix3Xcd d(3, n);
-  Eigen::Vector3cd sum = Eigen::Vector3cd::Zero();
-  for (Eigen::Index e = 0; e < n; ++e)
+  const Eigen::Index n = static_cast<Eigen::Index>(f.s.size());
+  Eigen::Matrix3Xcd d = Eigen::Matrix3Xcd::Zero(3, n);
+  for (size_t k = 0; k < f.coordinates.size(); ++k)
   {
-    const size_t i = static_cast<size_t>(e);
-    sum += f.length[i] * (angles(2 * e) * f.n[i].cross(f.s[i]).cast<std::complex<double>>() +
-                          angles(2 * e + 1) * f.m[i].cross(f.s[i]).cast<std::complex<double>>());
-    d.col(e) = sum;
+    const Coordinate& c = f.coordinates[k];
+    d.rightCols(n - c.element).colwise() +=
+        (c.scale * q(static_cast<Eigen::Index>(k))) * c.direction.cast<std::complex<double>>();
   }
   return d;
 }
@@ -102,35 +129,39 @@ Eigen::Matrix3Xd realShape(const Eigen::Matrix3Xcd& d)
   return (d / d(row, col)).real();
 }
 
-std::string dominantPart(const ElementFrames& f, const Eigen::VectorXcd& angles, const Eigen::Matrix3Xcd& d,
-                         bool end_body)
+std::string dominantPart(const ElementFrames& f, const Eigen::VectorXcd& q, const Eigen::Matrix3Xcd& d, bool end_body)
 {
-  const Eigen::Index n = angles.size() / 2, cable = end_body ? n - 1 : n;
-  if (end_body)
+  const Eigen::Index n = static_cast<Eigen::Index>(f.s.size()), cable = end_body ? n - 1 : n;
+  const Eigen::Index dof = q.size();
+  if (end_body)  // its two turns are the last coordinates
   {
-    const double l_end = f.length[static_cast<size_t>(n - 1)];
-    const double turn = l_end * std::hypot(std::abs(angles(2 * n - 2)), std::abs(angles(2 * n - 1)));
+    const double l_end = f.length.back();
+    const double turn = l_end * std::hypot(std::abs(q(dof - 2)), std::abs(q(dof - 1)));
     const double cable_peak = cable > 0 ? d.leftCols(cable).colwise().norm().maxCoeff() : 0.0;
     if (turn > cable_peak)  // the end body turns through more than the cable's joints move
-      return std::abs(angles(2 * n - 2)) >= std::abs(angles(2 * n - 1)) ? "vehicle pitch" : "vehicle yaw";
+      return std::abs(q(dof - 2)) >= std::abs(q(dof - 1)) ? "vehicle pitch" : "vehicle yaw";
   }
-  double in = 0.0, out = 0.0;
-  for (Eigen::Index e = 0; e < cable; ++e)
+  double in = 0.0, out = 0.0, axial = 0.0;
+  for (size_t k = 0; k < f.coordinates.size(); ++k)
   {
-    const double l = f.length[static_cast<size_t>(e)];
-    in += std::norm(l * angles(2 * e));
-    out += std::norm(l * angles(2 * e + 1));
+    const Coordinate& c = f.coordinates[k];
+    if (c.element >= cable)
+      continue;
+    const double part = std::norm(c.scale * q(static_cast<Eigen::Index>(k)));
+    (c.kind == Coordinate::Kind::kInPlane ? in : c.kind == Coordinate::Kind::kOutOfPlane ? out : axial) += part;
   }
+  if (axial > in && axial > out)
+    return "axial";
   return in >= out ? "in-plane" : "out-of-plane";
 }
 
-// The linearised equations about the state: rows q'' (two per element) and then the tension magnitudes at the
-// tow point and at the last element's forward joint; columns the angles (K), their rates (D) and, along
+// The linearised equations about the state: rows q'' (one per coordinate) and then the tension magnitudes at the
+// tow point and at the last element's forward joint; columns the coordinates (K), their rates (D) and, along
 // `input` (a tow-point translation per unit input), the input's displacement, velocity and acceleration.
 struct Linearisation
 {
-  Eigen::MatrixXd K, D;           // (2n + 2) x 2n
-  Eigen::VectorXd G_x, G_v, G_a;  // 2n + 2
+  Eigen::MatrixXd K, D;           // (N + 2) x N, N coordinates
+  Eigen::VectorXd G_x, G_v, G_a;  // N + 2
 };
 
 Eigen::VectorXd outputsOf(ChainSolver& solver, const ChainModel& model, const ChainGeometry& geometry,
@@ -140,10 +171,11 @@ Eigen::VectorXd outputsOf(ChainSolver& solver, const ChainModel& model, const Ch
   const Eigen::Index n = x.cols();
   Eigen::Matrix3Xd a(3, n), tensions(3, n);
   solver.solve(model, geometry, data, t, ship, x, v, a, &tensions);
-  Eigen::VectorXd out(2 * n + 2);
-  out.head(2 * n) = angularAccelerations(f, ship, a);
-  out(2 * n) = tensions.col(0).norm();
-  out(2 * n + 1) = tensions.col(n - 1).norm();
+  const Eigen::Index dof = static_cast<Eigen::Index>(f.coordinates.size());
+  Eigen::VectorXd out(dof + 2);
+  out.head(dof) = coordinateAccelerations(f, ship, a);
+  out(dof) = tensions.col(0).norm();
+  out(dof + 1) = tensions.col(n - 1).norm();
   return out;
 }
 
@@ -151,22 +183,22 @@ Linearisation linearise(const ChainModel& model, const ChainGeometry& geometry, 
                         const ShipEndState& ship, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, double h,
                         const ElementFrames& f, const Eigen::Vector3d& input)
 {
-  const Eigen::Index n = x.cols();
+  const Eigen::Index dof = static_cast<Eigen::Index>(f.coordinates.size());
   Linearisation L;
-  L.K.resize(2 * n + 2, 2 * n);
-  L.D.resize(2 * n + 2, 2 * n);
+  L.K.resize(dof + 2, dof);
+  L.D.resize(dof + 2, dof);
   ChainSolver solver;
   auto out = [&](const Eigen::Matrix3Xd& xs, const Eigen::Matrix3Xd& vs, const ShipEndState& end)
   { return outputsOf(solver, model, geometry, data, t, end, xs, vs, f); };
-  for (Eigen::Index e = 0; e < n; ++e)
-    for (int k = 0; k < 2; ++k)
-    {
-      const Eigen::Vector3d& axis = k == 0 ? f.n[static_cast<size_t>(e)] : f.m[static_cast<size_t>(e)];
-      L.K.col(2 * e + k) =
-          (out(turned(x, f, ship, e, axis, h), v, ship) - out(turned(x, f, ship, e, axis, -h), v, ship)) / (2.0 * h);
-      L.D.col(2 * e + k) =
-          (out(x, turning(v, f, e, axis, h), ship) - out(x, turning(v, f, e, axis, -h), ship)) / (2.0 * h);
-    }
+  for (Eigen::Index k = 0; k < dof; ++k)
+  {
+    const Coordinate& c = f.coordinates[static_cast<size_t>(k)];
+    // A stretch is differenced in metres by the same number as a turn in radians, but by no more than a tenth of
+    // the segment's stretch: the tension-only spring must not go slack within the step.
+    const double hc = c.kind == Coordinate::Kind::kStretch && c.stretch > 0.0 ? std::min(h, 0.1 * c.stretch) : h;
+    L.K.col(k) = (out(moved(x, f, ship, c, hc), v, ship) - out(moved(x, f, ship, c, -hc), v, ship)) / (2.0 * hc);
+    L.D.col(k) = (out(x, moving(v, c, hc), ship) - out(x, moving(v, c, -hc), ship)) / (2.0 * hc);
+  }
   ShipEndState plus = ship, minus = ship;  // the tow point and every joint displaced, then moving, along input
   plus.p_W += h * input;
   minus.p_W -= h * input;
@@ -182,21 +214,13 @@ Linearisation linearise(const ChainModel& model, const ChainGeometry& geometry, 
   return L;
 }
 
-void requireRigid(const ChainModel& model)
-{
-  if (model.elastic())
-    throw std::invalid_argument(
-        "small motions: the rigid cable only (cable.axial_stiffness: 0); an elastic "
-        "segment's stretch is not one of the coordinates");
-}
 }  // namespace
 
 std::vector<Mode> naturalModes(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data, double t,
                                const ShipEndState& ship, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
                                double step)
 {
-  requireRigid(model);
-  const ElementFrames f = framesOf(geometry, ship, x);
+  const ElementFrames f = framesOf(model, geometry, ship, x);
   const Linearisation L = linearise(model, geometry, data, t, ship, x, v, step, f, Eigen::Vector3d::UnitZ());
   const Eigen::Index dof = L.K.cols();
   const Eigen::MatrixXd K = L.K.topRows(dof), D = L.D.topRows(dof);
@@ -217,10 +241,10 @@ std::vector<Mode> naturalModes(const ChainModel& model, const ChainGeometry& geo
     mode.frequency = std::abs(lambda);
     mode.damping_ratio = mode.frequency > 0.0 ? -lambda.real() / mode.frequency : 0.0;
     mode.period = lambda.imag() > 0.0 ? 2.0 * kPi / lambda.imag() : std::numeric_limits<double>::infinity();
-    const Eigen::VectorXcd angles = eig.eigenvectors().col(i).head(dof);
-    const Eigen::Matrix3Xcd d = jointDisplacements(f, angles);
+    const Eigen::VectorXcd q = eig.eigenvectors().col(i).head(dof);
+    const Eigen::Matrix3Xcd d = jointDisplacements(f, q);
     mode.shape = realShape(d);
-    mode.dominant = dominantPart(f, angles, d, geometry.end_body);
+    mode.dominant = dominantPart(f, q, d, geometry.end_body);
     modes.push_back(mode);
   }
   std::sort(modes.begin(), modes.end(), [](const Mode& a, const Mode& b) { return a.frequency < b.frequency; });
@@ -233,10 +257,9 @@ std::vector<MotionResponse> motionResponse(const ChainModel& model, const ChainG
                                            const Eigen::Vector3d& input, const std::vector<double>& periods,
                                            double cg_fraction, double step)
 {
-  requireRigid(model);
-  const ElementFrames f = framesOf(geometry, ship, x);
+  const ElementFrames f = framesOf(model, geometry, ship, x);
   const Linearisation L = linearise(model, geometry, data, t, ship, x, v, step, f, input);
-  const Eigen::Index n = x.cols(), dof = 2 * n;
+  const Eigen::Index n = x.cols(), dof = static_cast<Eigen::Index>(f.coordinates.size());
   using C = std::complex<double>;
   const C i(0.0, 1.0);
   // The end body's lateral axis (port) for its pitch: horizontal, normal to its forward direction -s.
