@@ -7,6 +7,7 @@ import csv
 import glob
 import os
 import subprocess
+import sys
 import threading
 import time
 
@@ -265,6 +266,13 @@ def test_the_response_is_tow_sim_responses(tmp_path):
         tow_sim.response(tow_sim.load_config(CONFIG), speed=2.0, input="roll", periods=[4.0])
 
 
+def assert_plots(folder, png):
+    """tow_sim_plot draws the analysis's plot from its folder."""
+    subprocess.run([sys.executable, os.path.join(SOURCE, "scripts", "tow_sim_plot"), str(folder)], check=True,
+                   capture_output=True)
+    assert os.path.getsize(os.path.join(folder, png)) > 5000
+
+
 TWO_PART = """cable:
   diameter: 0.0173
   mass_per_length: 1.2
@@ -293,6 +301,7 @@ def test_the_strumming_analysis_is_tow_sim_strummings(tmp_path):
     assert (got["segments"]["shedding_frequency"] > 0).all() and (got["spans"]["dominant_mode"] > 0).all()
     with pytest.raises(ValueError, match="bandwidth"):
         tow_sim.strumming(tow_sim.load_config(str(config)), speed=2.0, bandwidth=1.0)
+    assert_plots(tmp_path, "strumming.png")
 
 
 def test_a_strumming_cable_tows_shallower():
@@ -327,3 +336,4 @@ def test_the_sea_state_is_tow_sim_responses(tmp_path):
     calm = tow_sim.Scenario.from_dict({"ship": {"manoeuvres": [{"type": "straight", "speed": 2.0}]}})
     with pytest.raises(ValueError, match="a sea state needs waves"):
         tow_sim.sea_state(calm)
+    assert_plots(tmp_path, "sea_state.png")
