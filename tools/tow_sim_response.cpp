@@ -158,10 +158,11 @@ int main(int argc, char** argv)
     *target = argv[++i];
   }
   if (!scenario.empty())
-    return config_path.empty() && speed.empty() && input.empty() && periods.empty() && tow_point.empty() &&
-                   !out_dir.empty()
-               ? seaState(scenario, cable_out, out_dir)
-               : usage("--scenario takes only --cable-out and --out");
+  {
+    if (!(config_path.empty() && speed.empty() && input.empty() && periods.empty() && tow_point.empty()))
+      return usage("--scenario takes only --cable-out and --out");
+    return out_dir.empty() ? usage("--scenario needs --out") : seaState(scenario, cable_out, out_dir);
+  }
   if (config_path.empty() || speed.empty() || input.empty() || periods.empty() || out_dir.empty())
     return usage("--config, --speed, --input, --periods and --out are needed");
   std::vector<MotionResponse> rows;

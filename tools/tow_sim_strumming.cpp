@@ -144,6 +144,8 @@ int main(int argc, char** argv)
     const double l = cable_out.empty() ? config.cable.length : number(cable_out, "--cable-out", 1e-3, 1e5);
     const Eigen::Vector3d c = current_text.empty() ? Eigen::Vector3d::Zero() : current(current_text);
     const double b = bandwidth.empty() ? 0.2 : number(bandwidth, "--bandwidth", 0.0, 1.0);
+    if (b >= 1.0)
+      throw std::invalid_argument("--bandwidth '" + bandwidth + "': a number in [0, 1)");
     analysis = steadyTowStrumming(config, u, l, c, b);
   }
   catch (const std::invalid_argument& e)

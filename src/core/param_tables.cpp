@@ -8,7 +8,8 @@ namespace tow_sim
 {
 namespace
 {
-// The cable's own keys, which every section takes too (cableParams adds the limits, strumming and the lists).
+// The cable's own keys: its geometry, weight, drag, load limits, elasticity and bending (cableParams adds
+// strumming and the lists of sections and bodies; a section takes every key but the limits).
 ParamTable<CableParams> cableMaterialParams()
 {
   using C = CableParams;

@@ -29,19 +29,36 @@ std::complex<double> MotionResponse::*const kFields[kSeaStateOutputs - 1] = {
   &MotionResponse::heave, &MotionResponse::surge,        &MotionResponse::sway,
   &MotionResponse::pitch, &MotionResponse::tension_ship, &MotionResponse::tension_vehicle
 };
+// The steady tow runs along +x, the ship frame: the currents, world, turned into it.
+SimulationConfig inShipFrame(const SimulationConfig& world, double heading)
+{
+  const Eigen::AngleAxisd to_ship(-heading, Eigen::Vector3d::UnitZ());
+  SimulationConfig config = world;
+  config.environment.current_W = to_ship * config.environment.current_W;
+  for (CurrentSample& sample : config.environment.current_profile)
+    sample.velocity_W = to_ship * sample.velocity_W;
+  return config;
+}
 }  // namespace
 
 SeaStateResponse seaStateResponse(const Scenario& scenario, std::optional<double> cable_out)
 {
-  const SimulationConfig& config = scenario.config;
-  if (config.environment.waves.type == WaveParams::Type::kNone)
+  if (scenario.config.environment.waves.type == WaveParams::Type::kNone)
     throw std::invalid_argument("sea state: environment.waves.type is none: a sea state needs waves");
-  const WaveField sea(config.environment.waves, config.environment.gravity);
+  if (!scenario.motion_file.empty())
+    throw std::invalid_argument(
+        "sea state: ship.motion_file replays measured motion; a sea state needs the ship's "
+        "manoeuvres and RAOs");
   const ScriptedShip ship(scenario.manoeuvres, scenario.start_position.x(), scenario.start_position.y(),
                           scenario.start_heading);
   SeaStateResponse out;
   out.speed = ship.speed();
+  if (!(out.speed > 0.0))
+    throw std::invalid_argument("sea state: the ship's initial speed " + std::to_string(out.speed) +
+                                " m/s must be > 0 (at rest the linearised drag has no flow to damp the response)");
   const double heading = scenario.start_heading;
+  const SimulationConfig config = inShipFrame(scenario.config, heading);
+  const WaveField sea(config.environment.waves, config.environment.gravity);
   const Eigen::Vector2d v_W = out.speed * Eigen::Vector2d(std::cos(heading), std::sin(heading));
   // Each component at |encounter frequency|, the ship's motion conjugated where it overtakes the wave (so that
   // every input is Re(D e^{+i |omega_e| t})).
@@ -57,12 +74,10 @@ SeaStateResponse seaStateResponse(const Scenario& scenario, std::optional<double
     periods.push_back(std::min(2.0 * kPi / std::max(std::abs(s.encounter_frequency), 1e-12), 1e5));
   }
   const double length = cable_out.value_or(config.cable.length);
-  // The steady tow runs along +x: the ship frame. The current, world, turned into it.
-  const Eigen::Vector3d current_S =
-      Eigen::AngleAxisd(-heading, Eigen::Vector3d::UnitZ()) * config.environment.current_W;
   std::vector<MotionResponse> axis[3];  // the tow's response to the tow point moving along x, y, z (ship frame)
   for (int k = 0; k < 3; ++k)
-    axis[k] = steadyTowResponse(config, out.speed, length, current_S, Eigen::Vector3d::Unit(k), periods);
+    axis[k] =
+        steadyTowResponse(config, out.speed, length, config.environment.current_W, Eigen::Vector3d::Unit(k), periods);
   for (size_t i = 0; i < out.components.size(); ++i)
   {
     SeaStateComponent& s = out.components[i];

@@ -196,6 +196,37 @@ TEST(Modes, AnElasticCableHangingInVacuumStretchesAtTheBarsFrequencies)
   EXPECT_NE(modes.front().dominant, "axial");
 }
 
+// With axial damping c (T = EA eps + c eps') the damping is proportional to the stiffness, as in a Kelvin-Voigt bar:
+// each axial mode's damping ratio is c omega / (2 EA), whatever the tip mass.
+TEST(Modes, AnElasticCablesAxialDampingIsKelvinVoigts)
+{
+  CableParams cable;
+  cable.length = 100.0;
+  cable.segments = 50;
+  cable.mass_per_length = 2.0;
+  cable.axial_stiffness = 1e6;
+  cable.axial_damping = 1e4;
+  EndElementParams end;
+  end.mass = 100.0;
+  Environment env;
+  env.water_density = 0.0;
+  const auto model = test::makeModel(cable, end, env);
+  const EquilibriumResult eq = steadyTowEquilibrium(*model, 0.0, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());
+  const std::vector<Mode> modes = naturalModes(*model, model->initialGeometry(), model->initialData(0.0), 0.0,
+                                               ShipEndState(), eq.state.x, eq.state.v);
+  int checked = 0;
+  for (const Mode& m : modes)
+    if (m.dominant == "axial" && checked < 2)
+    {
+      const double expected = cable.axial_damping * m.frequency / (2.0 * *cable.axial_stiffness);
+      std::printf("axial mode at %.4f rad/s: damping ratio %.6f, Kelvin-Voigt %.6f\n", m.frequency, m.damping_ratio,
+                  expected);
+      EXPECT_NEAR(m.damping_ratio / expected, 1.0, 1e-3);
+      ++checked;
+    }
+  EXPECT_EQ(checked, 2);
+}
+
 // A stiff elastic cable answers the ship's heave as the rigid chain does: the response converges as 1/EA.
 TEST(Modes, AStiffElasticCablesResponseIsTheRigidChains)
 {

@@ -214,7 +214,15 @@ TEST(Strumming, RefusesABadBandwidthOrAmplitude)
   }
   cable.strumming_amplitude = 1.0;
   cable.strouhal_number = 0.0;
-  EXPECT_THROW(validate(cable), std::invalid_argument);
+  try
+  {
+    validate(cable);
+    ADD_FAILURE() << "a Strouhal number of 0 accepted";
+  }
+  catch (const std::invalid_argument& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("cable.strouhal_number"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -328,6 +328,8 @@ def test_the_sea_state_is_tow_sim_responses(tmp_path):
     for name, values in got["components"].items():
         if values.dtype == complex:
             assert np.allclose(amplitude * np.abs(values), want[name], rtol=1e-8, atol=1e-15), name
+            phase = np.degrees(np.angle(values)) - np.array(want[name + "_phase"])
+            assert np.allclose((phase + 180.0) % 360.0 - 180.0, 0.0, atol=1e-6), name
     # Head seas: the ship meets the waves faster than they come; the standard deviations sum the components.
     assert (got["components"]["encounter_frequency"] > got["components"]["frequency"]).all()
     heave = got["components"]["vehicle_heave"]

@@ -1,7 +1,8 @@
 // The steady tow in an irregular sea, in the frequency domain (issue 31, item 3; docs/physics.md §12, (P53a)):
 // each wave component of a scenario's sea (the very components its run draws) moves the ship by its response
-// amplitude operators at the encounter frequency, the ship's heave, roll and pitch move the tow point, and the
-// tow answers by its response to the tow point's motion (modes.h, motionResponse). The outputs' variances are
+// amplitude operators (read at the wave's frequency, zero-speed ones) and the ship meets it at the encounter
+// frequency; the ship's heave, roll and pitch move the tow point, and the tow answers at the encounter frequency
+// by its response to the tow point's motion (modes.h, motionResponse). The outputs' variances are
 // the sums over the components of half their squared amplitudes. (Library tow_sim_scenario.)
 #pragma once
 
@@ -41,7 +42,8 @@ struct SeaStateResponse
 // The scenario's sea (environment.waves: regular or jonswap) about the steady tow at the scenario's initial
 // speed and heading with cable_out [m] (default the configuration's), the ship moving by its RAOs (the
 // scenario's rao_file or the generic vessel; none with ship.wave_response false) and the tow point at
-// tow_point_S. Throws std::invalid_argument for calm water, and as steadyTow.
+// tow_point_S; currents turned into the ship's frame. Throws std::invalid_argument for calm water, a ship that
+// replays a motion file or starts at rest (speed <= 0), and as steadyTow.
 SeaStateResponse seaStateResponse(const Scenario& scenario, std::optional<double> cable_out = std::nullopt);
 
 }  // namespace tow_sim

@@ -190,12 +190,27 @@ Linearisation linearise(const ChainModel& model, const ChainGeometry& geometry, 
   ChainSolver solver;
   auto out = [&](const Eigen::Matrix3Xd& xs, const Eigen::Matrix3Xd& vs, const ShipEndState& end)
   { return outputsOf(solver, model, geometry, data, t, end, xs, vs, f); };
+  const double floor = 1e-12 * (1.0 + x.cwiseAbs().maxCoeff());  // [m] a step rounding leaves exact to 1e-4
+  Eigen::VectorXd at_rest;
   for (Eigen::Index k = 0; k < dof; ++k)
   {
     const Coordinate& c = f.coordinates[static_cast<size_t>(k)];
     // A stretch is differenced in metres by the same number as a turn in radians, but by no more than a tenth of
-    // the segment's stretch: the tension-only spring must not go slack within the step.
-    const double hc = c.kind == Coordinate::Kind::kStretch && c.stretch > 0.0 ? std::min(h, 0.1 * c.stretch) : h;
+    // the segment's stretch, so that the tension-only spring does not go slack within the step (a stiff cable's
+    // stretch can be 1e-7 m). Where that would be below rounding, one-sided on the taut side by 100 times that; a
+    // segment at or below its rest length, one-sided on the slack side (it carries no tension: its spring is not
+    // linear there, and slack is what it is).
+    const bool stretch = c.kind == Coordinate::Kind::kStretch;
+    const double hc = stretch && c.stretch > 0.0 ? std::min(h, 0.1 * c.stretch) : h;
+    if (stretch && (c.stretch <= 0.0 || hc < floor))
+    {
+      if (at_rest.size() == 0)
+        at_rest = out(x, v, ship);
+      const double step = c.stretch > 0.0 ? 100.0 * floor : -h;
+      L.K.col(k) = (out(moved(x, f, ship, c, step), v, ship) - at_rest) / step;
+      L.D.col(k) = (out(x, moving(v, c, step), ship) - at_rest) / step;
+      continue;
+    }
     L.K.col(k) = (out(moved(x, f, ship, c, hc), v, ship) - out(moved(x, f, ship, c, -hc), v, ship)) / (2.0 * hc);
     L.D.col(k) = (out(x, moving(v, c, hc), ship) - out(x, moving(v, c, -hc), ship)) / (2.0 * hc);
   }

@@ -62,14 +62,14 @@ void describeSegments(const ChainModel& model, const ChainGeometry& geometry, do
     const CableParams& cable = model.segmentCable(e, geometry);
     StrummingSegment& seg = segments[static_cast<size_t>(e)];
     const Eigen::Vector3d x_f = joints.col(e), x_a = joints.col(e + 1);
-    const double d = (x_a - x_f).norm();
-    const Eigen::Vector3d s = (x_a - x_f) / d;
+    const double d = (x_a - x_f).norm();  // > 0 but for a fully slack elastic segment, which has no axis to shed off
+    const Eigen::Vector3d s = d > 0.0 ? Eigen::Vector3d((x_a - x_f) / d) : Eigen::Vector3d::Zero();
     const Eigen::Vector3d u = 0.5 * (velocities.col(e) + velocities.col(e + 1)) - env.flowOver(x_f, x_a, t).velocity_W;
     seg.section = geometry.sectionOf(e);
     seg.span = span;
     seg.arc_length = along + 0.5 * d;
     seg.depth = -0.5 * (x_f.z() + x_a.z());
-    seg.normal_speed = (u - u.dot(s) * s).norm();
+    seg.normal_speed = d > 0.0 ? (u - u.dot(s) * s).norm() : 0.0;
     seg.shedding_frequency = cable.strouhal_number * seg.normal_speed / cable.diameter;
     // The tension at its aft end: the next element's, and a point body's load there taken by this segment (the
     // body at rest relative to the ship: T_aft = T_{e+1} - F_body).
@@ -107,7 +107,7 @@ StrummingSpan describeSpan(std::vector<StrummingSegment>& segments, const std::v
   {
     StrummingSegment& seg = segments[i];
     const double high = seg.shedding_frequency * (1.0 + bandwidth) / sp.fundamental;
-    if (seg.wave_speed <= 0.0 || seg.shedding_frequency <= 0.0 || high >= 1e15)
+    if (seg.wave_speed <= 0.0 || !(seg.shedding_frequency > 0.0) || !(high < 1e15))
       continue;
     const long lo =
         std::max(1L, static_cast<long>(std::ceil(seg.shedding_frequency * (1.0 - bandwidth) / sp.fundamental - 1e-12)));
@@ -134,6 +134,8 @@ StrummingAnalysis strummingAnalysis(const ChainModel& model, const ChainGeometry
   if (nu < 1 || joints.cols() < nu + 1 || velocities.cols() < nu + 1 || tensions.cols() < nu + 1)
     throw std::invalid_argument("strumming: fewer joints, velocities or tensions than the chain's " +
                                 std::to_string(nu) + " segments need");
+  if (!joints.allFinite() || !velocities.allFinite() || !tensions.allFinite())
+    throw std::invalid_argument("strumming: the joints, velocities and tensions must be finite");
   StrummingAnalysis out;
   out.bandwidth = bandwidth;
   std::vector<double> lengths;
