@@ -1,5 +1,6 @@
 #include "tow_sim/config/config.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <stdexcept>
 #include <vector>
@@ -41,6 +42,27 @@ void readSections(Section& s, SimulationConfig& c)
   c.sections.clear();
   for (Section item : s.items("sections"))
   {
+    if (item.has("depressor"))  // {depressor: {...}} alone: one rigid element, the cable level's keys unused
+    {
+      CableParams section = c.cable;
+      section.depressor = DepressorParams();
+      Section body = item.child("depressor");
+      ParamReader r(body);
+      r.read(depressorParams(), *section.depressor);
+      r.finish();
+      item.finish();  // nothing beside it
+      section.length = section.depressor->length;
+      section.segments = 1;
+      section.axial_stiffness.reset();  // refused below when the cable is elastic
+      if (c.cable.elastic())
+        fail(item.path("depressor"), "is a rigid element: not in an elastic cable (cable.axial_stiffness set)");
+      section.bending_stiffness = 0.0;  // universal joints at both ends
+      section.strumming = StrummingLaw::kNone;
+      section.diameter = std::min(1.0, section.depressor->diameter);  // drawn at its body's width
+      validate(section, item.name());
+      c.sections.push_back(section);
+      continue;
+    }
     for (const char* key : { "length", "segments" })
       if (!item.has(key))
         fail(item.path(key), "is required in each section");
@@ -308,6 +330,12 @@ YAML::Node toYaml(const SimulationConfig& c)
   for (const CableParams& section : c.sections)
   {
     YAML::Node item(YAML::NodeType::Map);
+    if (section.depressor)
+    {
+      detail::writeParams(item["depressor"], depressorParams(), *section.depressor);
+      root["cable"]["sections"].push_back(item);
+      continue;
+    }
     detail::writeParams(item, cableParams(), section);
     for (const char* key : { "safe_working_load", "breaking_load", "break_at_breaking_load" })
       item.remove(key);

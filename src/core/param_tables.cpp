@@ -1,6 +1,7 @@
 #include "tow_sim/core/param_tables.h"
 
 #include <algorithm>
+#include <string>
 
 #include "tow_sim/core/constants.h"
 
@@ -72,7 +73,8 @@ const ParamTable<CableParams>& cableParams()
                   "[{length: L, segments: n, diameter: …}, …] from the tow point aft: each entry takes this "
                   "level's keys (a key left out is this level's) but the load limits, which are the whole "
                   "cable's; length and segments here may be left out (the sums); empty: one uniform cable. The "
-                  "winch pays out and hauls in the first section")
+                  "winch pays out and hauls in the first section. An entry {depressor: {…}} alone is a winged "
+                  "depressor, one rigid element (not the first section; the keys below)")
           .custom("bodies", "m, kg, m^3, m^2", "[]",
                   "at on a joint, in (0, length]; the rest ≥ 0; with the winch, not inside the first section; with "
                   "breaking_load, no body's own weight in water takes what hangs from it at rest over it",
@@ -190,23 +192,48 @@ const ParamTable<WinchParams>& winchParams()
   return table;
 }
 
+namespace
+{
+// The keys of an axisymmetric rigid body between two attachments (the end element's, a depressor's): S is
+// EndElementParams or derives from it. `ends` says what length measures, `drag` what the diameter is for.
+template <class S>
+ParamTable<S> rigidBodyParams(const std::string& ends, const std::string& from, const std::string& drag)
+{
+  const auto along = [](const S& e) { return std::make_pair(0.0, e.length); };
+  return ParamTable<S>()
+      .number("length", &S::length, "m", 0.0, 100.0, kOpen, ends)
+      .number("mass", &S::mass, "kg", 0.0, 1e6, kOpen, "in air")
+      .number("displaced_volume", &S::displaced_volume, "m^3", 0.0, 1e3, kClosed, "buoyancy at the CB")
+      .bounded("cg_from_bail", &S::cg_from_bail, "m", along, "0 .. length", "centre of gravity" + from)
+      .bounded("cb_from_bail", &S::cb_from_bail, "m", along, "0 .. length", "centre of buoyancy")
+      .optionalNumber("transverse_inertia", &S::transverse_inertia, "kg m^2", 0.0, 1e9, kOpen, "thin rod",
+                      "about the CG")
+      .number("diameter", &S::diameter, "m", 0.0, 10.0, kOpen, drag)
+      .number("normal_drag_coefficient", &S::normal_drag_coefficient, "-", 0.0, 10.0, kClosed, "C_dn")
+      .number("tangential_drag_coefficient", &S::tangential_drag_coefficient, "-", 0.0, 10.0, kClosed, "C_dt")
+      .number("added_mass_coefficient", &S::added_mass_coefficient, "-", 0.0, 10.0, kClosed, "C_a");
+}
+}  // namespace
+
 const ParamTable<EndElementParams>& endElementParams()
 {
-  using E = EndElementParams;
-  const auto along = [](const E& e) { return std::make_pair(0.0, e.length); };
-  static const ParamTable<E> table =
-      ParamTable<E>()
-          .number("length", &E::length, "m", 0.0, 100.0, kOpen, "d_{ν+1}, bail to tail point")
-          .number("mass", &E::mass, "kg", 0.0, 1e6, kOpen, "in air")
-          .number("displaced_volume", &E::displaced_volume, "m^3", 0.0, 1e3, kClosed, "buoyancy at the CB")
-          .bounded("cg_from_bail", &E::cg_from_bail, "m", along, "0 .. length", "centre of gravity")
-          .bounded("cb_from_bail", &E::cb_from_bail, "m", along, "0 .. length", "centre of buoyancy")
-          .optionalNumber("transverse_inertia", &E::transverse_inertia, "kg m^2", 0.0, 1e9, kOpen, "thin rod",
-                          "about the CG")
-          .number("diameter", &E::diameter, "m", 0.0, 10.0, kOpen, "for drag and added mass")
-          .number("normal_drag_coefficient", &E::normal_drag_coefficient, "-", 0.0, 10.0, kClosed, "C_dn")
-          .number("tangential_drag_coefficient", &E::tangential_drag_coefficient, "-", 0.0, 10.0, kClosed, "C_dt")
-          .number("added_mass_coefficient", &E::added_mass_coefficient, "-", 0.0, 10.0, kClosed, "C_a");
+  static const ParamTable<EndElementParams> table =
+      rigidBodyParams<EndElementParams>("d_{ν+1}, bail to tail point", "", "for drag and added mass");
+  return table;
+}
+
+const ParamTable<DepressorParams>& depressorParams()
+{
+  using D = DepressorParams;
+  const auto along = [](const D& d) { return std::make_pair(0.0, d.length); };
+  static const ParamTable<D> table =
+      rigidBodyParams<D>("fore attachment (its bail) to aft attachment", ", from the fore attachment",
+                         "for the body's drag and added mass")
+          .number("wing_area", &D::wing_area, "m^2", 0.0, 100.0, kClosed, "S of the wing")
+          .number("lift_coefficient", &D::lift_coefficient, "-", 0.0, 5.0, kClosed,
+                  "C_L: the lift ½ρ S C_L |w_p|² presses the depressor toward its underside (physics.md (P49a))")
+          .bounded("lift_from_bail", &D::lift_from_bail, "m", along, "0 .. length",
+                   "where the lift acts, from the fore attachment");
   return table;
 }
 

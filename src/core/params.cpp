@@ -146,6 +146,15 @@ void validate(const CableParams& c, const std::string& p)
   if (c.safe_working_load && c.breaking_load)
     requireInRange(paramName(p, "breaking_load"), *c.breaking_load, *c.safe_working_load, 1e9,
                    "[N] (at least safe_working_load)");
+  if (c.depressor)
+  {
+    validate(*c.depressor, p + ".depressor");
+    if (c.segments != 1 || c.length != c.depressor->length)
+      throw std::invalid_argument(p + ": a depressor is one element of its own length (segments 1, length " +
+                                  std::to_string(c.depressor->length) + " m)");
+    if (c.elastic())
+      throw std::invalid_argument(paramName(p, "depressor") + ": not in an elastic cable (cable.axial_stiffness set)");
+  }
   if (!c.elastic() && c.axial_damping != 0.0)
     requireInRange(paramName(p, "axial_damping"), c.axial_damping, 0.0, 0.0, "[N s] (0 unless axial_stiffness is set)");
 }
@@ -153,6 +162,11 @@ void validate(const CableParams& c, const std::string& p)
 void validate(const EndElementParams& e, const std::string& p)
 {
   validateParams(endElementParams(), e, p);
+}
+
+void validate(const DepressorParams& d, const std::string& p)
+{
+  validateParams(depressorParams(), d, p);
 }
 
 void validate(const NumericsParams& n, const std::string& p)

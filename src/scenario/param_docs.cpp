@@ -244,6 +244,7 @@ const std::map<std::string, std::function<std::string()>>& tables()
 {
   static const std::map<std::string, std::function<std::string()>> all = {
     { "cable", [] { return markdown(cableParams(), CableParams()); } },
+    { "depressor", [] { return markdown(depressorParams(), DepressorParams()); } },
     { "vehicle", [] { return markdown(vehicleParams(), VehicleParams()); } },
     { "environment", [] { return markdown(environmentParams(), Environment()); } },
     { "winch", [] { return markdown(winchParams(), WinchParams()); } },

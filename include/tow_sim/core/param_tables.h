@@ -15,5 +15,6 @@ const ParamTable<Environment>& environmentParams();
 const ParamTable<NumericsParams>& numericsParams();
 const ParamTable<WinchParams>& winchParams();
 const ParamTable<EndElementParams>& endElementParams();
+const ParamTable<DepressorParams>& depressorParams();
 
 }  // namespace tow_sim

@@ -76,6 +76,34 @@ private:
   Eigen::Vector3d profileAt(double depth) const;
 };
 
+// The simple rigid end element (element nu+1) of the cable core: an axisymmetric rigid body on the
+// axis bail -> tail point, with weight at its CG, buoyancy at its CB and cable-like velocity forces.
+// Distances are measured from the bail (cable attachment) aft along the body axis.
+struct EndElementParams
+{
+  double length = 2.0;                        // [m] d_{nu+1}, bail to tail point, > 0 .. 100
+  double mass = 200.0;                        // [kg] in air, > 0 .. 1e6
+  double displaced_volume = 0.1414;           // [m^3] buoyancy rho g V acts at the CB, >= 0 .. 1e3
+  double cg_from_bail = 1.0;                  // [m] d_{nu+2}, 0 .. length
+  double cb_from_bail = 1.0;                  // [m] d_{nu+6}, 0 .. length
+  std::optional<double> transverse_inertia;   // [kg m^2] about the CG; default: thin rod over `length`
+  double diameter = 0.3;                      // [m] for drag and added mass, > 0 .. 10
+  double normal_drag_coefficient = 1.0;       // [-] >= 0 .. 10
+  double tangential_drag_coefficient = 0.05;  // [-] >= 0 .. 10
+  double added_mass_coefficient = 1.0;        // [-] >= 0 .. 10
+
+  double transverseInertia() const;  // [kg m^2] about the CG
+};
+
+// A winged depressor in line in the cable (physics.md §11): a rigid element between two joints, the end element's
+// body (its "bail" the fore attachment, its "tail point" the aft one) with a wing whose lift presses it down.
+struct DepressorParams : EndElementParams
+{
+  double wing_area = 0.0;         // [m^2] S, >= 0 .. 100
+  double lift_coefficient = 0.0;  // [-] C_L, >= 0 .. 5: lift 1/2 rho S C_L |u_p|^2 toward the body's underside
+  double lift_from_bail = 1.0;    // [m] where the lift acts, 0 .. length
+};
+
 struct CableParams
 {
   double length = 500.0;                      // [m] total cable length L, > 0 .. 1e5
@@ -103,6 +131,9 @@ struct CableParams
   StrummingLaw strumming = StrummingLaw::kNone;
   double strumming_amplitude = 1.0;  // [-] A/D, the cross-flow amplitude over the diameter, > 0 .. 3
   double strouhal_number = 0.2;      // [-] St, > 0 .. 1
+  // A section may be a winged depressor instead of cable: one rigid element of the depressor's length (sections
+  // only; set: segments 1, length the depressor's; the cable's other keys of this section are not used).
+  std::optional<DepressorParams> depressor;
 
   bool elastic() const { return axial_stiffness.has_value(); }
   // [N] the tension of a segment of rest length rest [m] at length length [m] stretching at rate [m/s]:
@@ -117,25 +148,6 @@ struct CableParams
   double c1Value(const Environment& env) const;  // [N s^2/m^3]
   double c2Value(const Environment& env) const;  // [N s^2/m^3], the cable at rest in the flow
   double normalDragAmplification() const;        // [-] of strumming (P55): 1 without it
-};
-
-// The simple rigid end element (element nu+1) of the cable core: an axisymmetric rigid body on the
-// axis bail -> tail point, with weight at its CG, buoyancy at its CB and cable-like velocity forces.
-// Distances are measured from the bail (cable attachment) aft along the body axis.
-struct EndElementParams
-{
-  double length = 2.0;                        // [m] d_{nu+1}, bail to tail point, > 0 .. 100
-  double mass = 200.0;                        // [kg] in air, > 0 .. 1e6
-  double displaced_volume = 0.1414;           // [m^3] buoyancy rho g V acts at the CB, >= 0 .. 1e3
-  double cg_from_bail = 1.0;                  // [m] d_{nu+2}, 0 .. length
-  double cb_from_bail = 1.0;                  // [m] d_{nu+6}, 0 .. length
-  std::optional<double> transverse_inertia;   // [kg m^2] about the CG; default: thin rod over `length`
-  double diameter = 0.3;                      // [m] for drag and added mass, > 0 .. 10
-  double normal_drag_coefficient = 1.0;       // [-] >= 0 .. 10
-  double tangential_drag_coefficient = 0.05;  // [-] >= 0 .. 10
-  double added_mass_coefficient = 1.0;        // [-] >= 0 .. 10
-
-  double transverseInertia() const;  // [kg m^2] about the CG
 };
 
 enum class StepperType
@@ -192,6 +204,7 @@ void validate(const Environment& env, const std::string& prefix = "environment")
 void prepareWaves(Environment& env);
 void validate(const CableParams& cable, const std::string& prefix = "cable");
 void validate(const EndElementParams& end, const std::string& prefix = "end_element");
+void validate(const DepressorParams& depressor, const std::string& prefix);
 void validate(const NumericsParams& numerics, const std::string& prefix = "numerics");
 // Also checks the winch against the cable (its length within the limits, the band against L / nu).
 void validate(const WinchParams& winch, const CableParams& cable, const std::string& prefix = "winch");

@@ -65,11 +65,15 @@ void describeSegments(const ChainModel& model, const ChainGeometry& geometry, do
     const double d = (x_a - x_f).norm();  // > 0 but for a fully slack elastic segment, which has no axis to shed off
     const Eigen::Vector3d s = d > 0.0 ? Eigen::Vector3d((x_a - x_f) / d) : Eigen::Vector3d::Zero();
     const Eigen::Vector3d u = 0.5 * (velocities.col(e) + velocities.col(e + 1)) - env.flowOver(x_f, x_a, t).velocity_W;
+    // A depressor is a rigid body, not a string, and heavy: a span of its own, which neither sheds nor rings.
+    const bool depressor = model.depressorAt(e, geometry) != nullptr;
+    if (depressor && e > 0)
+      ++span;
     seg.section = geometry.sectionOf(e);
     seg.span = span;
     seg.arc_length = along + 0.5 * d;
     seg.depth = -0.5 * (x_f.z() + x_a.z());
-    seg.normal_speed = d > 0.0 ? (u - u.dot(s) * s).norm() : 0.0;
+    seg.normal_speed = d > 0.0 && !depressor ? (u - u.dot(s) * s).norm() : 0.0;
     seg.shedding_frequency = cable.strouhal_number * seg.normal_speed / cable.diameter;
     // The tension at its aft end: the next element's, and a point body's load there taken by this segment (the
     // body at rest relative to the ship: T_aft = T_{e+1} - F_body).
@@ -80,11 +84,11 @@ void describeSegments(const ChainModel& model, const ChainGeometry& geometry, do
     seg.tension = 0.5 * (tensions.col(e).norm() + t_aft.norm());
     const double m_t = cable.mass_per_length +
                        cable.added_mass_coefficient * env.water_density * 0.25 * kPi * cable.diameter * cable.diameter;
-    seg.wave_speed = seg.tension > 0.0 ? std::sqrt(seg.tension / m_t) : 0.0;
+    seg.wave_speed = seg.tension > 0.0 && !depressor ? std::sqrt(seg.tension / m_t) : 0.0;
     seg.drag_amplification = cable.normalDragAmplification();
     lengths[static_cast<size_t>(e)] = d;
     along += d;
-    if (body)  // the next span begins
+    if (body || depressor)  // the next span begins
       ++span;
   }
 }

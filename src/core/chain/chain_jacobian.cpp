@@ -195,9 +195,9 @@ void elementJacobian(const ChainModel& model, int e, double t, const ElementKine
                      const ChainGeometry& geometry, const ChainData& data, double mu, ElementJacobian& out,
                      const Vector6d* accelerations)
 {
-  if (e < geometry.segments)
+  if (e < geometry.segments && !model.depressorAt(e, geometry))
     segmentJacobian(model, e, t, k, geometry, data, out);
-  else
+  else  // the end body, or a depressor: by central differences
     endBodyJacobian(model, e, t, k, geometry, data, accelerations, out);
   addGeometricStiffness(k, mu, out);
   if (model.elastic() && e < geometry.segments)

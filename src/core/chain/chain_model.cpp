@@ -75,7 +75,13 @@ ChainModel::ChainModel(const std::vector<CableParams>& sections, const std::vect
     if (sections[i].elastic() != sections[0].elastic())
       throw std::invalid_argument("cable.sections[" + std::to_string(i) +
                                   "].axial_stiffness: every section must be elastic or every one rigid");
-    sections_.push_back({ sections[i], CableSegmentModel::fromParams(sections[i], env_, numerics_) });
+    if (sections[i].depressor && i == 0)
+      throw std::invalid_argument(
+          "cable.sections[0].depressor: the first section is the cable the tow point pulls "
+          "and the winch pays out; a depressor follows a section of cable");
+    sections_.push_back(
+        { sections[i], CableSegmentModel::fromParams(sections[i], env_, numerics_),
+          sections[i].depressor ? std::make_shared<const Depressor>(*sections[i].depressor, numerics_) : nullptr });
     segments_ += sections[i].segments;
     bends_ = bends_ || sections[i].bending_stiffness > 0.0;
     if (i > 0)
@@ -144,7 +150,13 @@ void ChainModel::elementDynamics(int e, double t, const ElementKinematics& k, co
       cableSegmentDynamics(first, t, k, data.environment, out);
   }
   else if (e < geometry.segments)
-    cableSegmentDynamics(sections_[static_cast<size_t>(geometry.sectionOf(e))].segment, t, k, data.environment, out);
+  {
+    const CableSection& section = sections_[static_cast<size_t>(geometry.sectionOf(e))];
+    if (section.depressor)
+      section.depressor->dynamics(t, k, data.environment, out);
+    else
+      cableSegmentDynamics(section.segment, t, k, data.environment, out);
+  }
   else
     end_body_->dynamics(t, k, data.environment, data.actuators, out);
   if (with_contact && seabed())

@@ -190,6 +190,40 @@ RigidEndElement::RigidEndElement(const EndElementParams& params, const NumericsP
   validate(p_);
 }
 
+Depressor::Depressor(const DepressorParams& params, const NumericsParams& numerics)
+    : p_(params), body_(params, numerics)
+{
+  validate(p_, "depressor");
+}
+
+Eigen::Vector3d Depressor::lift(const ElementKinematics& k, const Eigen::Vector3d& flow_W, double water_density) const
+{
+  const double cg = p_.cg_from_bail / p_.length;
+  const Eigen::Vector3d w = flow_W - k.velocityAt(cg);  // the water past the body
+  Eigen::Vector3d y_b = Eigen::Vector3d::UnitZ().cross(k.s);
+  y_b = y_b.norm() > 1e-9 ? Eigen::Vector3d(y_b.normalized()) : Eigen::Vector3d::UnitY();  // hanging vertically
+  const Eigen::Vector3d w_p = w - w.dot(y_b) * y_b;
+  const double speed = w_p.norm();
+  if (speed < kTinySpeed)
+    return Eigen::Vector3d::Zero();
+  Eigen::Vector3d down = y_b.cross(w_p) / speed;  // normal to w_p in the plane of symmetry
+  if (down.dot(k.s.cross(y_b)) > 0.0)
+    down = -down;
+  return (0.5 * water_density * p_.wing_area * p_.lift_coefficient * speed * speed) * down;
+}
+
+void Depressor::dynamics(double t, const ElementKinematics& k, const Environment& env, BodyDynamics& out) const
+{
+  static const Actuators none;
+  body_.dynamics(t, k, env, none, out);
+  if (p_.wing_area <= 0.0 || p_.lift_coefficient <= 0.0)
+    return;
+  const Eigen::Vector3d x_G = k.pointAt(out.cg_fraction);
+  const Eigen::Vector3d L = lift(k, env.flowAt(x_G, t).velocity_W, env.water_density);
+  out.wrench.head<3>() += L;
+  out.wrench.tail<3>() += (k.pointAt(p_.lift_from_bail / p_.length) - x_G).cross(L);
+}
+
 Actuators EndBody::restingActuators(double t) const
 {
   Actuators a;

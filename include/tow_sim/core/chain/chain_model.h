@@ -95,7 +95,8 @@ struct ChainData
 struct CableSection
 {
   CableParams cable;
-  CableSegmentModel segment;  // a nominal segment
+  CableSegmentModel segment;                   // a nominal segment
+  std::shared_ptr<const Depressor> depressor;  // a section that is a winged depressor (one element), else null
 };
 
 // A point body at a joint of the cable: a clump weight or a float (docs/solver.md §11). Its mass and loads
@@ -152,6 +153,11 @@ public:
   const CableParams& segmentCable(int e, const ChainGeometry& geometry) const
   {
     return sections_[static_cast<size_t>(geometry.sectionOf(e))].cable;
+  }
+  // The depressor that element e is in a geometry (null: a cable segment or the end body).
+  const Depressor* depressorAt(int e, const ChainGeometry& geometry) const
+  {
+    return e < geometry.segments ? sections_[static_cast<size_t>(geometry.sectionOf(e))].depressor.get() : nullptr;
   }
   CableSegmentModel segmentModel(int e, const ChainGeometry& geometry) const;
   bool elastic() const { return cable().elastic(); }  // every section alike

@@ -142,4 +142,23 @@ private:
   double smoothing_speed_;
 };
 
+// A winged depressor in line in the cable (physics.md §11, (P49a)): the rigid end element's body between a fore
+// and an aft attachment, plus a wing's lift 1/2 rho S C_L |w_p|^2 at lift_from_bail, normal to w_p (the water's
+// velocity relative to the body, less its component along the body's horizontal lateral axis y_b = z x s) in the
+// body's plane of symmetry, toward the body's underside (away from n_b = s x y_b, which points up).
+class Depressor
+{
+public:
+  Depressor(const DepressorParams& params, const NumericsParams& numerics);
+  double length() const { return p_.length; }
+  void dynamics(double t, const ElementKinematics& k, const Environment& env, BodyDynamics& out) const;
+  // [N] the lift alone, for a body along k in the water's flow flow_W [m/s] (world) at its CG.
+  Eigen::Vector3d lift(const ElementKinematics& k, const Eigen::Vector3d& flow_W, double water_density) const;
+  const DepressorParams& params() const { return p_; }
+
+private:
+  DepressorParams p_;
+  RigidEndElement body_;
+};
+
 }  // namespace tow_sim
