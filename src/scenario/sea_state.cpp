@@ -74,10 +74,10 @@ SeaStateResponse seaStateResponse(const Scenario& scenario, std::optional<double
     periods.push_back(std::min(2.0 * kPi / std::max(std::abs(s.encounter_frequency), 1e-12), 1e5));
   }
   const double length = cable_out.value_or(config.cable.length);
-  std::vector<MotionResponse> axis[3];  // the tow's response to the tow point moving along x, y, z (ship frame)
-  for (int k = 0; k < 3; ++k)
-    axis[k] =
-        steadyTowResponse(config, out.speed, length, config.environment.current_W, Eigen::Vector3d::Unit(k), periods);
+  // The tow's response to the tow point moving along x, y, z (ship frame): one steady tow, one linearisation.
+  const std::vector<std::vector<MotionResponse>> axis =
+      steadyTowResponses(config, out.speed, length, config.environment.current_W,
+                         { Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitZ() }, periods);
   for (size_t i = 0; i < out.components.size(); ++i)
   {
     SeaStateComponent& s = out.components[i];

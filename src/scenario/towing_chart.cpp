@@ -108,21 +108,30 @@ Eigen::Vector3d towPointMotion(const std::string& input, const Eigen::Vector3d& 
   throw std::invalid_argument("input '" + input + "': one of heave, surge, sway, pitch");
 }
 
-std::vector<MotionResponse> steadyTowResponse(const SimulationConfig& config, double speed, double cable_out,
-                                              const Eigen::Vector3d& current_W, const Eigen::Vector3d& input,
-                                              const std::vector<double>& periods)
+std::vector<std::vector<MotionResponse>> steadyTowResponses(const SimulationConfig& config, double speed,
+                                                            double cable_out, const Eigen::Vector3d& current_W,
+                                                            const std::vector<Eigen::Vector3d>& inputs,
+                                                            const std::vector<double>& periods)
 {
   for (double period : periods)
     if (!(period > 0.0 && period <= 1e5))
       throw std::invalid_argument("response: the period " + std::to_string(period) + " s is not in (0, 1e5]");
-  if (!input.allFinite() || input.norm() == 0.0)
-    throw std::invalid_argument("response: the input's tow-point motion must be finite and not zero");
+  for (const Eigen::Vector3d& input : inputs)
+    if (!input.allFinite() || input.norm() == 0.0)
+      throw std::invalid_argument("response: the input's tow-point motion must be finite and not zero");
   const std::unique_ptr<TowRun> run = steadyTowRun(config, speed, cable_out, current_W);
   const Simulator& sim = run->simulator();
   const ChainState state = sim.state();
   const double cg_fraction = config.vehicle.cg_from_bail / config.vehicle.tail_from_bail;
-  return motionResponse(run->model(), sim.geometry(), sim.data(), sim.time(), sim.firstJoint(), state.x, state.v, input,
-                        periods, cg_fraction);
+  return motionResponses(run->model(), sim.geometry(), sim.data(), sim.time(), sim.firstJoint(), state.x, state.v,
+                         inputs, periods, cg_fraction);
+}
+
+std::vector<MotionResponse> steadyTowResponse(const SimulationConfig& config, double speed, double cable_out,
+                                              const Eigen::Vector3d& current_W, const Eigen::Vector3d& input,
+                                              const std::vector<double>& periods)
+{
+  return steadyTowResponses(config, speed, cable_out, current_W, { input }, periods).front();
 }
 
 ChartPoint chartPoint(const SimulationConfig& config, double speed, double cable_out, const Eigen::Vector3d& current_W)

@@ -50,6 +50,11 @@ std::vector<Mode> steadyTowModes(const SimulationConfig& config, double speed, d
 std::vector<MotionResponse> steadyTowResponse(const SimulationConfig& config, double speed, double cable_out,
                                               const Eigen::Vector3d& current_W, const Eigen::Vector3d& input,
                                               const std::vector<double>& periods);
+// The same for several inputs: one steady tow and one linearisation; [input][period].
+std::vector<std::vector<MotionResponse>> steadyTowResponses(const SimulationConfig& config, double speed,
+                                                            double cable_out, const Eigen::Vector3d& current_W,
+                                                            const std::vector<Eigen::Vector3d>& inputs,
+                                                            const std::vector<double>& periods);
 
 // Where that steady tow's cable sheds vortices and which string modes the shedding can lock into, with the
 // lock-in band f_s (1 +- bandwidth) (strumming.h; tow_sim_strumming). Throws as steadyTow, and

@@ -157,11 +157,15 @@ std::string dominantPart(const ElementFrames& f, const Eigen::VectorXcd& q, cons
 
 // The linearised equations about the state: rows q'' (one per coordinate) and then the tension magnitudes at the
 // tow point and at the last element's forward joint; columns the coordinates (K), their rates (D) and, along
-// `input` (a tow-point translation per unit input), the input's displacement, velocity and acceleration.
+// each input (a tow-point translation per unit input), the input's displacement, velocity and acceleration.
+struct Forcing
+{
+  Eigen::VectorXd G_x, G_v, G_a;  // N + 2
+};
 struct Linearisation
 {
-  Eigen::MatrixXd K, D;           // (N + 2) x N, N coordinates
-  Eigen::VectorXd G_x, G_v, G_a;  // N + 2
+  Eigen::MatrixXd K, D;     // (N + 2) x N, N coordinates
+  std::vector<Forcing> by;  // one per input
 };
 
 Eigen::VectorXd outputsOf(ChainSolver& solver, const ChainModel& model, const ChainGeometry& geometry,
@@ -181,7 +185,7 @@ Eigen::VectorXd outputsOf(ChainSolver& solver, const ChainModel& model, const Ch
 
 Linearisation linearise(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data, double t,
                         const ShipEndState& ship, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, double h,
-                        const ElementFrames& f, const Eigen::Vector3d& input)
+                        const ElementFrames& f, const std::vector<Eigen::Vector3d>& inputs)
 {
   const Eigen::Index dof = static_cast<Eigen::Index>(f.coordinates.size());
   Linearisation L;
@@ -214,18 +218,23 @@ Linearisation linearise(const ChainModel& model, const ChainGeometry& geometry, 
     L.K.col(k) = (out(moved(x, f, ship, c, hc), v, ship) - out(moved(x, f, ship, c, -hc), v, ship)) / (2.0 * hc);
     L.D.col(k) = (out(x, moving(v, c, hc), ship) - out(x, moving(v, c, -hc), ship)) / (2.0 * hc);
   }
-  ShipEndState plus = ship, minus = ship;  // the tow point and every joint displaced, then moving, along input
-  plus.p_W += h * input;
-  minus.p_W -= h * input;
-  L.G_x = (out(x.colwise() + h * input, v, plus) - out(x.colwise() - h * input, v, minus)) / (2.0 * h);
-  plus = minus = ship;
-  plus.v_W += h * input;
-  minus.v_W -= h * input;
-  L.G_v = (out(x, v.colwise() + h * input, plus) - out(x, v.colwise() - h * input, minus)) / (2.0 * h);
-  plus = minus = ship;
-  plus.a_W += h * input;
-  minus.a_W -= h * input;
-  L.G_a = (out(x, v, plus) - out(x, v, minus)) / (2.0 * h);
+  for (const Eigen::Vector3d& input : inputs)
+  {
+    Forcing G;
+    ShipEndState plus = ship, minus = ship;  // the tow point and every joint displaced, then moving, along input
+    plus.p_W += h * input;
+    minus.p_W -= h * input;
+    G.G_x = (out(x.colwise() + h * input, v, plus) - out(x.colwise() - h * input, v, minus)) / (2.0 * h);
+    plus = minus = ship;
+    plus.v_W += h * input;
+    minus.v_W -= h * input;
+    G.G_v = (out(x, v.colwise() + h * input, plus) - out(x, v.colwise() - h * input, minus)) / (2.0 * h);
+    plus = minus = ship;
+    plus.a_W += h * input;
+    minus.a_W -= h * input;
+    G.G_a = (out(x, v, plus) - out(x, v, minus)) / (2.0 * h);
+    L.by.push_back(G);
+  }
   return L;
 }
 
@@ -236,7 +245,7 @@ std::vector<Mode> naturalModes(const ChainModel& model, const ChainGeometry& geo
                                double step)
 {
   const ElementFrames f = framesOf(model, geometry, ship, x);
-  const Linearisation L = linearise(model, geometry, data, t, ship, x, v, step, f, Eigen::Vector3d::UnitZ());
+  const Linearisation L = linearise(model, geometry, data, t, ship, x, v, step, f, {});
   const Eigen::Index dof = L.K.cols();
   const Eigen::MatrixXd K = L.K.topRows(dof), D = L.D.topRows(dof);
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(2 * dof, 2 * dof);
@@ -266,44 +275,59 @@ std::vector<Mode> naturalModes(const ChainModel& model, const ChainGeometry& geo
   return modes;
 }
 
+std::vector<std::vector<MotionResponse>> motionResponses(const ChainModel& model, const ChainGeometry& geometry,
+                                                         const ChainData& data, double t, const ShipEndState& ship,
+                                                         const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
+                                                         const std::vector<Eigen::Vector3d>& inputs,
+                                                         const std::vector<double>& periods, double cg_fraction,
+                                                         double step)
+{
+  const ElementFrames f = framesOf(model, geometry, ship, x);
+  const Linearisation L = linearise(model, geometry, data, t, ship, x, v, step, f, inputs);
+  const Eigen::Index n = x.cols(), dof = static_cast<Eigen::Index>(f.coordinates.size());
+  using C = std::complex<double>;
+  const C i(0.0, 1.0);
+  // The end body's lateral axis (port) for its pitch: horizontal, normal to its forward direction -s.
+  const Eigen::Vector3d s_end = f.s.back(), y_body = Eigen::Vector3d::UnitZ().cross(-s_end).normalized();
+  std::vector<std::vector<MotionResponse>> out(inputs.size());
+  for (double period : periods)
+  {
+    const double w = 2.0 * kPi / period;
+    // (-w^2 I - i w D - K) Q = (G_x + i w G_v - w^2 G_a), per unit input displacement: one factorisation per period
+    const Eigen::PartialPivLU<Eigen::MatrixXcd> A(-w * w * Eigen::MatrixXcd::Identity(dof, dof) -
+                                                  i * w * L.D.topRows(dof).cast<C>() - L.K.topRows(dof).cast<C>());
+    for (size_t k = 0; k < inputs.size(); ++k)
+    {
+      const Forcing& F = L.by[k];
+      const Eigen::Vector3cd input = inputs[k].cast<C>();
+      const Eigen::VectorXcd G = (F.G_x + i * w * F.G_v - w * w * F.G_a).cast<C>();
+      const Eigen::VectorXcd Q = A.solve(G.head(dof));
+      const Eigen::Matrix3Xcd d = jointDisplacements(f, Q).colwise() + input;
+      const Eigen::Vector3cd bail = n > 1 ? Eigen::Vector3cd(d.col(n - 2)) : input;
+      const Eigen::Vector3cd cg = bail + cg_fraction * (Eigen::Vector3cd(d.col(n - 1)) - bail);
+      MotionResponse r;
+      r.period = period;
+      r.surge = cg.x();
+      r.sway = cg.y();
+      r.heave = cg.z();
+      r.pitch = Q(dof - 2) * f.n.back().dot(y_body) + Q(dof - 1) * f.m.back().dot(y_body);
+      const Eigen::VectorXcd tension =
+          L.K.bottomRows(2).cast<C>() * Q + i * w * (L.D.bottomRows(2).cast<C>() * Q) + G.tail(2);
+      r.tension_ship = tension(0);
+      r.tension_vehicle = tension(1);
+      out[k].push_back(r);
+    }
+  }
+  return out;
+}
+
 std::vector<MotionResponse> motionResponse(const ChainModel& model, const ChainGeometry& geometry,
                                            const ChainData& data, double t, const ShipEndState& ship,
                                            const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
                                            const Eigen::Vector3d& input, const std::vector<double>& periods,
                                            double cg_fraction, double step)
 {
-  const ElementFrames f = framesOf(model, geometry, ship, x);
-  const Linearisation L = linearise(model, geometry, data, t, ship, x, v, step, f, input);
-  const Eigen::Index n = x.cols(), dof = static_cast<Eigen::Index>(f.coordinates.size());
-  using C = std::complex<double>;
-  const C i(0.0, 1.0);
-  // The end body's lateral axis (port) for its pitch: horizontal, normal to its forward direction -s.
-  const Eigen::Vector3d s_end = f.s.back(), y_body = Eigen::Vector3d::UnitZ().cross(-s_end).normalized();
-  std::vector<MotionResponse> out;
-  for (double period : periods)
-  {
-    const double w = 2.0 * kPi / period;
-    // (-w^2 I - i w D - K) Q = (G_x + i w G_v - w^2 G_a), per unit input displacement
-    const Eigen::MatrixXcd A =
-        -w * w * Eigen::MatrixXcd::Identity(dof, dof) - i * w * L.D.topRows(dof).cast<C>() - L.K.topRows(dof).cast<C>();
-    const Eigen::VectorXcd G = (L.G_x + i * w * L.G_v - w * w * L.G_a).cast<C>();
-    const Eigen::VectorXcd Q = A.partialPivLu().solve(G.head(dof));
-    const Eigen::Matrix3Xcd d = jointDisplacements(f, Q).colwise() + input.cast<C>();
-    const Eigen::Vector3cd bail = n > 1 ? Eigen::Vector3cd(d.col(n - 2)) : Eigen::Vector3cd(input.cast<C>());
-    const Eigen::Vector3cd cg = bail + cg_fraction * (Eigen::Vector3cd(d.col(n - 1)) - bail);
-    MotionResponse r;
-    r.period = period;
-    r.surge = cg.x();
-    r.sway = cg.y();
-    r.heave = cg.z();
-    r.pitch = Q(dof - 2) * f.n.back().dot(y_body) + Q(dof - 1) * f.m.back().dot(y_body);
-    const Eigen::VectorXcd tension =
-        L.K.bottomRows(2).cast<C>() * Q + i * w * (L.D.bottomRows(2).cast<C>() * Q) + G.tail(2);
-    r.tension_ship = tension(0);
-    r.tension_vehicle = tension(1);
-    out.push_back(r);
-  }
-  return out;
+  return motionResponses(model, geometry, data, t, ship, x, v, { input }, periods, cg_fraction, step).front();
 }
 
 }  // namespace tow_sim

@@ -53,4 +53,12 @@ std::vector<MotionResponse> motionResponse(const ChainModel& model, const ChainG
                                            const Eigen::Vector3d& input, const std::vector<double>& periods,
                                            double cg_fraction, double step = 1e-6);
 
+// The same for several inputs at once: the linearisation once, one factorisation per period; [input][period].
+std::vector<std::vector<MotionResponse>> motionResponses(const ChainModel& model, const ChainGeometry& geometry,
+                                                         const ChainData& data, double t, const ShipEndState& ship,
+                                                         const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
+                                                         const std::vector<Eigen::Vector3d>& inputs,
+                                                         const std::vector<double>& periods, double cg_fraction,
+                                                         double step = 1e-6);
+
 }  // namespace tow_sim
