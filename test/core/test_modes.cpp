@@ -155,30 +155,48 @@ TEST(Modes, TheSteadyTowsVehicleYawModeRingsAtItsPeriodAndDampingInAFreeDecay)
   EXPECT_NEAR(zeta / yaw_mode->damping_ratio, 1.0, 0.02);
 }
 
-// A bar fixed at the top with a mass M at its lower end vibrates along its length at beta L tan(beta L) = mu L / M,
-// omega = beta sqrt(EA / mu) (the bar's mass mu L; axial waves do not feel the static tension of a linear spring).
-// An elastic cable hanging in vacuum from its tow point, its end body M, stretched to rest by its own weight.
-TEST(Modes, AnElasticCableHangingInVacuumStretchesAtTheBarsFrequencies)
+namespace
+{
+// 100 m of elastic cable (2 kg/m, EA 1e6 N, the axial damping c [N s]) in 50 segments.
+CableParams hangingElasticCable(double damping)
 {
   CableParams cable;
   cable.length = 100.0;
   cable.segments = 50;
   cable.mass_per_length = 2.0;
   cable.axial_stiffness = 1e6;
+  cable.axial_damping = damping;
+  return cable;
+}
+
+// Its modes hanging in vacuum from the tow point, an end body of end_mass [kg], stretched to rest by its weight.
+std::vector<Mode> elasticHangingModes(const CableParams& cable, double end_mass)
+{
   EndElementParams end;
-  end.mass = 100.0;
+  end.mass = end_mass;
   Environment env;
   env.water_density = 0.0;
   const auto model = test::makeModel(cable, end, env);
   const EquilibriumResult eq = steadyTowEquilibrium(*model, 0.0, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());
-  const std::vector<Mode> modes = naturalModes(*model, model->initialGeometry(), model->initialData(0.0), 0.0,
-                                               ShipEndState(), eq.state.x, eq.state.v);
+  return naturalModes(*model, model->initialGeometry(), model->initialData(0.0), 0.0, ShipEndState(), eq.state.x,
+                      eq.state.v);
+}
+}  // namespace
+
+// A bar fixed at the top with a mass M at its lower end vibrates along its length at beta L tan(beta L) = mu L / M,
+// omega = beta sqrt(EA / mu) (the bar's mass mu L; axial waves do not feel the static tension of a linear spring).
+// An elastic cable hanging in vacuum from its tow point, its end body M, stretched to rest by its own weight.
+TEST(Modes, AnElasticCableHangingInVacuumStretchesAtTheBarsFrequencies)
+{
+  const CableParams cable = hangingElasticCable(0.0);
+  const double end_mass = 100.0;
+  const std::vector<Mode> modes = elasticHangingModes(cable, end_mass);
   std::vector<double> axial;
   for (const Mode& m : modes)
     if (m.dominant == "axial")
       axial.push_back(m.frequency);
   ASSERT_GE(axial.size(), 2u);
-  const double ratio = cable.mass_per_length * cable.length / end.mass, c = std::sqrt(1e6 / cable.mass_per_length);
+  const double ratio = cable.mass_per_length * cable.length / end_mass, c = std::sqrt(1e6 / cable.mass_per_length);
   for (int k = 0; k < 2; ++k)
   {
     double lo = k * kPi + 1e-9, hi = k * kPi + 0.5 * kPi - 1e-9;  // the root of x tan x = ratio in this branch
@@ -200,20 +218,8 @@ TEST(Modes, AnElasticCableHangingInVacuumStretchesAtTheBarsFrequencies)
 // each axial mode's damping ratio is c omega / (2 EA), whatever the tip mass.
 TEST(Modes, AnElasticCablesAxialDampingIsKelvinVoigts)
 {
-  CableParams cable;
-  cable.length = 100.0;
-  cable.segments = 50;
-  cable.mass_per_length = 2.0;
-  cable.axial_stiffness = 1e6;
-  cable.axial_damping = 1e4;
-  EndElementParams end;
-  end.mass = 100.0;
-  Environment env;
-  env.water_density = 0.0;
-  const auto model = test::makeModel(cable, end, env);
-  const EquilibriumResult eq = steadyTowEquilibrium(*model, 0.0, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());
-  const std::vector<Mode> modes = naturalModes(*model, model->initialGeometry(), model->initialData(0.0), 0.0,
-                                               ShipEndState(), eq.state.x, eq.state.v);
+  const CableParams cable = hangingElasticCable(1e4);
+  const std::vector<Mode> modes = elasticHangingModes(cable, 100.0);
   int checked = 0;
   for (const Mode& m : modes)
     if (m.dominant == "axial" && checked < 2)

@@ -82,8 +82,9 @@ void describeSegments(const ChainModel& model, const ChainGeometry& geometry, do
         body ? Eigen::Vector3d(tensions.col(e + 1) - body->force(env, t, x_a, velocities.col(e + 1)))
              : Eigen::Vector3d(tensions.col(e + 1));
     seg.tension = 0.5 * (tensions.col(e).norm() + t_aft.norm());
-    const double m_t = cable.mass_per_length +
-                       cable.added_mass_coefficient * env.water_density * 0.25 * kPi * cable.diameter * cable.diameter;
+    // The string's mass per length: the cable's and its added mass (the segment model's, per metre).
+    const CableSegmentModel model_e = model.segmentModel(e, geometry);
+    const double m_t = (model_e.mass + model_e.added_mass) / model_e.length;
     seg.wave_speed = seg.tension > 0.0 && !depressor ? std::sqrt(seg.tension / m_t) : 0.0;
     seg.drag_amplification = cable.normalDragAmplification();
     lengths[static_cast<size_t>(e)] = d;
