@@ -17,8 +17,8 @@ import sys
 
 LIBRARIES = ["core", "config", "scenario", "ros"]
 LAYERS = [
-    ["constants", "geometry", "param_table"],
-    ["waves", "params", "param_tables", "numeric_csv", "tension_limits"],
+    ["constants", "geometry", "param_table", "survey_measurement", "layback_rules"],
+    ["waves", "params", "param_tables", "numeric_csv", "tension_limits", "measurement_csv"],
     ["fins", "seabed", "element", "ship_response"],
     ["added_mass", "vehicle"],
     ["chain_model"],
@@ -27,7 +27,7 @@ LAYERS = [
     ["simulator"],
     ["equilibrium", "ship_track", "odometry_check", "gnss_track", "depth_autopilot", "track_trail", "simulation_config"],
     ["tow_run"],
-    ["saved_state", "live_run"],
+    ["saved_state", "live_run", "survey_sensors", "tow_nav"],
 ]
 LAYER = {name: i for i, names in enumerate(LAYERS) for name in names}
 # Core sources that implement a header of another name.

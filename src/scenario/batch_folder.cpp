@@ -6,10 +6,12 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <system_error>
 #include <vector>
 
 #include "tow_sim/core/io/saved_state.h"
+#include "tow_sim/core/survey/survey_sensors.h"
 #include "tow_sim/scenario/batch_run.h"
 
 namespace tow_sim
@@ -50,9 +52,31 @@ std::string stateName(double t)
   return name;
 }
 
+// measurements.csv: the survey sensors' rows as the snapshots come (sensors.enabled).
+class MeasurementWriter
+{
+public:
+  MeasurementWriter(const SurveySensorParams& params, std::ostream& out, int precision)
+      : sensors_(params), out_(out), precision_(precision)
+  {
+    out_ << surveyMeasurementHeader() << '\n';
+  }
+  void observe(const TowSnapshot& s)
+  {
+    sensors_.observe(s);
+    for (const SurveyMeasurement& row : sensors_.take(s.t))
+      out_ << surveyMeasurementRow(row, precision_) << '\n';
+  }
+
+private:
+  SurveySensors sensors_;
+  std::ostream& out_;
+  int precision_;
+};
+
 // Runs the scenario into the open CSV files and the state files.
 void runInto(const Scenario& sc, const std::string& out_dir, std::ostream& series, std::ostream& shapes, int precision,
-             const std::function<void(double t)>& progress, BatchOutcome& outcome)
+             const std::function<void(double t)>& progress, const SnapshotSink& observe, BatchOutcome& outcome)
 {
   BatchResult result;
   std::string saved;
@@ -73,7 +97,7 @@ void runInto(const Scenario& sc, const std::string& out_dir, std::ostream& serie
   };
   try
   {
-    runScenario(sc, series, shapes, result, progress, save, precision);
+    runScenario(sc, series, shapes, result, progress, save, precision, observe);
   }
   catch (const BadInitialState& e)
   {
@@ -99,8 +123,8 @@ void runInto(const Scenario& sc, const std::string& out_dir, std::ostream& serie
     outcome.errors += "tow_sim_batch: " + result.start_warning + "\n";
   outcome.report += format(
       "tow_sim_batch: %.0f s simulated; wrote %s/timeseries.csv (%ld rows), shapes.csv, "
-      "scenario.yaml, events.csv%s\n",
-      sc.duration, out_dir.c_str(), result.rows, saved.c_str());
+      "scenario.yaml, events.csv%s%s\n",
+      sc.duration, out_dir.c_str(), result.rows, sc.sensors.enabled ? ", measurements.csv" : "", saved.c_str());
   outcome.rows = result.rows;
   outcome.code = unwritten ? 4 : 0;
 }
@@ -137,7 +161,22 @@ BatchOutcome runBatchFile(const std::string& scenario_path, const std::string& o
   std::function<void(double)> each;
   if (progress)
     each = [&progress, &sc](double t) { progress(t, sc.duration); };
-  runInto(sc, out_dir, series, shapes, precision, each, outcome);
+  std::ofstream measurements;
+  std::unique_ptr<MeasurementWriter> writer;
+  SnapshotSink observe;
+  if (sc.sensors.enabled)
+  {
+    measurements.open(out_dir + "/measurements.csv");
+    if (!measurements)
+    {
+      outcome.errors = "tow_sim_batch: cannot write into " + out_dir + "\n";
+      outcome.code = 4;
+      return outcome;
+    }
+    writer = std::make_unique<MeasurementWriter>(sc.sensors, measurements, precision);
+    observe = [&writer](const TowSnapshot& s) { writer->observe(s); };
+  }
+  runInto(sc, out_dir, series, shapes, precision, each, observe, outcome);
   return outcome;
 }
 

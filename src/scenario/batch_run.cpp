@@ -209,7 +209,8 @@ StartedScenario startScenario(const Scenario& sc)
 }
 
 void runScenario(const Scenario& sc, std::ostream& series, std::ostream& shapes, BatchResult& result,
-                 const std::function<void(double t)>& progress, const SaveStateSink& save_state, int precision)
+                 const std::function<void(double t)>& progress, const SaveStateSink& save_state, int precision,
+                 const SnapshotSink& observe)
 {
   result = BatchResult();
   StartedScenario started = startScenario(sc);
@@ -238,6 +239,8 @@ void runScenario(const Scenario& sc, std::ostream& series, std::ostream& shapes,
     const TowSnapshot s = run.snapshot();
     result.parting = s.parting;
     series << timeseriesRow(s, precision) << '\n';
+    if (observe)
+      observe(s);
     if (i % shapes_every == 0 || i == outputs)
       shapes << shapesRows(s, sections, precision);
     result.t_reached = t;

@@ -1,5 +1,8 @@
 #include "tow_sim/scenario/param_docs.h"
 
+#include "tow_sim/core/survey/survey_sensors.h"
+#include "tow_sim/core/survey/tow_nav.h"
+
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -14,6 +17,8 @@
 #include "tow_sim/core/constants.h"
 #include "tow_sim/core/environment/seabed.h"
 #include "tow_sim/core/param_tables.h"
+#include "tow_sim/core/survey/survey_sensors.h"
+#include "tow_sim/core/survey/tow_nav.h"
 #include "tow_sim/core/vehicle/vehicle.h"
 #include "tow_sim/scenario/scenario_tables.h"
 
@@ -261,6 +266,8 @@ const std::map<std::string, std::function<std::string()>>& tables()
     { "autopilot", [] { return markdown(autopilotLoopParams(), AutopilotLoop()); } },
     { "initial_state", [] { return markdown(initialStateParams(), InitialShape()); } },
     { "simulation", [] { return markdown(simulationParams(), Scenario()); } },
+    { "sensors", [] { return markdown(surveySensorParams(), SurveySensorParams()); } },
+    { "nav", [] { return markdown(towNavParams(), TowNavParams()); } },
   };
   return all;
 }

@@ -316,6 +316,14 @@ Scenario loadScenarioUnguarded(const YAML::Node& root, const std::string& base_d
   readCommands(top, sc);
   readAutopilot(top, sc);
   readInitialState(top, sc, base_dir);
+  if (top.has("sensors"))
+  {
+    ParamReader sensors(top.child("sensors"));
+    sc.sensors.enabled = true;
+    sensors.read(surveySensorParams(), sc.sensors);
+    sensors.finish();
+    validate(sc.sensors, sensors.at("").name());
+  }
   ParamReader simulation(top.child("simulation"));
   simulation.read(simulationParams(), sc);
   sc.save_state_at = simulation.at("").list("save_state_at");
@@ -419,6 +427,8 @@ YAML::Node toYaml(const Scenario& sc)
   detail::writeParams(init, initialStateParams(), sc.initial);
   if (sc.initial.type == InitialShape::Type::kPoints)
     init["points"] = std::vector<double>(sc.initial.points.data(), sc.initial.points.data() + sc.initial.points.size());
+  if (sc.sensors.enabled)
+    detail::writeParams(root["sensors"], surveySensorParams(), sc.sensors);
   detail::writeParams(root["simulation"], simulationParams(), sc);
   if (!sc.save_state_at.empty())
     root["simulation"]["save_state_at"] = sc.save_state_at;

@@ -52,14 +52,16 @@ std::string eventsRows(const BatchResult& result);
 // at its time (relocate(), said in start_warning). A state that cannot be read or does not fit the run throws
 // BadInitialState.
 // `precision`: significant digits of the CSV's numbers (tow_sim_batch --precision).
+// `observe` (may be empty) gets every snapshot a row is written from (the survey sensors' truth).
 using SaveStateSink = std::function<void(double t, const RunState& state)>;
+using SnapshotSink = std::function<void(const TowSnapshot& s)>;
 struct BadInitialState : std::invalid_argument
 {
   using std::invalid_argument::invalid_argument;
 };
 void runScenario(const Scenario& scenario, std::ostream& series, std::ostream& shapes, BatchResult& result,
                  const std::function<void(double t)>& progress = {}, const SaveStateSink& save_state = {},
-                 int precision = 10);
+                 int precision = 10, const SnapshotSink& observe = {});
 
 // What tow_sim_batch does with a scenario file and an output folder (the tool, the Python module's run_batch and
 // tow_sim_sweep's in-process runs): reads the scenario, writes DIR/timeseries.csv, shapes.csv, scenario.yaml,

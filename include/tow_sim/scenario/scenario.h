@@ -15,6 +15,7 @@
 #include "tow_sim/core/environment/ship_response.h"
 #include "tow_sim/core/run/depth_autopilot.h"
 #include "tow_sim/core/run/tow_run.h"
+#include "tow_sim/core/survey/survey_sensors.h"
 
 namespace tow_sim
 {
@@ -73,6 +74,7 @@ struct Scenario
   double output_interval = 1.0;       // [s] timeseries.csv
   double shape_interval = 60.0;       // [s] shapes.csv
   std::vector<double> save_state_at;  // [s] output times at which the run's state is saved (sorted)
+  SurveySensorParams sensors;         // survey sensors simulated into measurements.csv (sensors.enabled)
 };
 
 // Reads a scenario; throws std::invalid_argument naming the key, the value and the allowed range.
