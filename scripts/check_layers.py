@@ -36,6 +36,7 @@ SOURCES = {
     "simulator_parting": "simulator",
     "simulator_state": "simulator",
     "snapshot_interpolation": "tow_run",
+    "tow_nav_analysis": "tow_nav",
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s+"tow_sim/([^"]+)\.h"', re.M)
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The towfish estimator against the layback rules on a lawn-mower survey (issue 29, docs/survey.md).
 
-    survey_benchmark.py BIN_DIR OUT_DIR [--seeds N] [--plot PNG] [--reuse]
+    survey_benchmark.py BIN_DIR OUT_DIR [--seeds N] [--plot PNG] [--nav-config YAML] [--reuse]
 
 Runs bench/survey/lawnmower.yaml with tow_sim_batch (the truth and its measurements.csv), then tow_sim_nav with
 bench/survey/nav.yaml (no current, drag 20 % high) for each seed of the ensemble, once with the USBL fixes
@@ -82,6 +82,8 @@ def main():
     parser.add_argument("out_dir")
     parser.add_argument("--seeds", type=int, default=3)
     parser.add_argument("--plot")
+    parser.add_argument("--nav-config", default=os.path.join(REPO, "bench/survey/nav.yaml"),
+                        help="the estimator's configuration (default bench/survey/nav.yaml)")
     parser.add_argument("--reuse", action="store_true", help="keep the runs already in OUT_DIR (table and plot only)")
     args = parser.parse_args()
     os.makedirs(args.out_dir, exist_ok=True)
@@ -93,7 +95,7 @@ def main():
     measurements = {"USBL": os.path.join(truth_dir, "measurements.csv"),
                     "no USBL": os.path.join(args.out_dir, "measurements_no_usbl.csv")}
     without_usbl(measurements["USBL"], measurements["no USBL"])
-    nav_config = open(os.path.join(REPO, "bench/survey/nav.yaml")).read()
+    nav_config = open(args.nav_config).read()
     results = {}
     for case, path in measurements.items():
         for seed in range(1, args.seeds + 1):

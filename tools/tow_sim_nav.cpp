@@ -106,11 +106,16 @@ int run(const std::string& config_path, const std::string& measurements_path, co
     baselines << baselineRow(row.t, nav.baselines()) << '\n';
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!nav.started())
+    std::fprintf(stderr,
+                 "tow_sim_nav: warning: the model never started: it needs ship_x, ship_y and ship_heading over "
+                 "nav.start_after = %g s; estimate.csv has no positions\n",
+                 params.start_after);
   std::printf(
       "tow_sim_nav: %zu rows (%.0f s of survey) in %.1f s; current estimated (%.3f, %.3f) m/s, drag scale "
-      "%.3f; rejected %ld rows, %ld USBL fixes; wrote %s/estimate.csv, baselines.csv\n",
+      "%.3f; rejected %ld rows, %ld ship fixes, %ld USBL fixes; wrote %s/estimate.csv, baselines.csv\n",
       rows.size(), rows.empty() ? 0.0 : rows.back().t - rows.front().t, wall, last.current.x(), last.current.y(),
-      last.drag_scale, last.rows_rejected, last.usbl_rejected, out_dir.c_str());
+      last.drag_scale, last.rows_rejected, last.fixes_rejected, last.usbl_rejected, out_dir.c_str());
   return 0;
 }
 

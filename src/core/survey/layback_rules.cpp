@@ -22,13 +22,16 @@ void LaybackRules::addShip(double x, double y, double heading)
   const Eigen::Vector2d tow(x + c * tow_point_S_.x() - s * tow_point_S_.y(),
                             y + s * tow_point_S_.x() + c * tow_point_S_.y());
   heading_ = heading;
-  if (!track_.empty())
+  // Points closer than 1 m to the one before the newest replace the newest: the track's length is not made of the
+  // fixes' noise, and a ship at rest keeps the older point, which holds the direction of travel.
+  if (track_.size() >= 2 && (tow - track_[1]).norm() < 1.0)
   {
-    const double step = (tow - track_.front()).norm();
-    if (step < 1e-3)  // the ship at rest: keep the older point, which holds the direction of travel
-      return;
-    track_length_ += step;
+    track_length_ += (tow - track_[1]).norm() - (track_[0] - track_[1]).norm();
+    track_.front() = tow;
+    return;
   }
+  if (!track_.empty())
+    track_length_ += (tow - track_.front()).norm();
   track_.push_front(tow);
   while (track_.size() > 2 && track_length_ - (track_[track_.size() - 2] - track_.back()).norm() > memory_)
   {
@@ -46,11 +49,13 @@ Eigen::Vector2d LaybackRules::backAlongTrack(double distance) const
   {
     const Eigen::Vector2d piece = track_[i + 1] - track_[i];
     const double length = piece.norm();
+    if (length < 1e-9)  // the newest point back on the one before it
+      continue;
     if (left <= length || i + 2 == track_.size())
       return track_[i] + piece * (left / length);
     left -= length;
   }
-  return track_.front() - distance * Eigen::Vector2d(std::cos(heading_), std::sin(heading_));
+  return track_.back() - left * Eigen::Vector2d(std::cos(heading_), std::sin(heading_));
 }
 
 LaybackFixes LaybackRules::at(double cable_out, double depth) const

@@ -1,17 +1,14 @@
 #include "tow_sim/core/survey/tow_nav.h"
 
-#include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace tow_sim
 {
 namespace
 {
-constexpr int kParams = 5;  // c_x, c_y, ln k, b_x, b_y
-using ParamVector = Eigen::Matrix<double, kParams, 1>;
-
 // The configuration with every cable drag coefficient (and C1, C2 where given) times k.
 SimulationConfig withDragScale(SimulationConfig config, double k)
 {
@@ -30,16 +27,21 @@ SimulationConfig withDragScale(SimulationConfig config, double k)
   return config;
 }
 
-}  // namespace
-
-struct TowNav::Member
+// The largest ln k that keeps every drag coefficient within its range (C_dn <= 10, C_dt <= 1), at most 1.5.
+double largestLnK(const SimulationConfig& config)
 {
-  std::unique_ptr<TowRun> run;
-  ParamVector x = ParamVector::Zero();
-  double built_ln_k = 0.0;                          // the ln k its run was built with
-  TowSnapshot last;                                 // at the last advance
-  Eigen::Vector2d shown = Eigen::Vector2d::Zero();  // the offset in the estimate: follows x[3], x[4] smoothly
-};
+  double largest = 1.5;
+  for (const CableParams& c : cableSections(config))
+  {
+    if (c.normal_drag_coefficient > 0.0)
+      largest = std::min(largest, std::log(10.0 / c.normal_drag_coefficient));
+    if (c.tangential_drag_coefficient > 0.0)
+      largest = std::min(largest, std::log(1.0 / c.tangential_drag_coefficient));
+  }
+  return largest;
+}
+
+}  // namespace
 
 const ParamTable<TowNavParams>& towNavParams()
 {
@@ -81,7 +83,8 @@ void validate(const TowNavParams& params, const std::string& prefix)
 TowNav::TowNav(const SimulationConfig& config, const TowNavParams& params)
     : config_(config),
       params_(params),
-      ship_(std::make_shared<ShipHistory>(1.0, 100000)),
+      max_ln_k_(largestLnK(config)),
+      ship_(std::make_shared<ShipHistory>(params.ship_interval + 1.0, 100000)),
       gnss_(GnssTrackParams{ Eigen::Vector3d::Zero(), params.gnss_smoothing, false }),
       rules_(params.tow_point_S, params.catenary_factor),
       random_(static_cast<std::uint64_t>(params.seed))
@@ -98,11 +101,23 @@ void TowNav::takeShip(const SurveyMeasurement& row)
     heading_ = row.ship_heading;
   if (!std::isfinite(row.ship_x) || !std::isfinite(row.ship_y) || !std::isfinite(heading_))
     return;
+  if (!std::isnan(last_fix_) && row.t <= last_fix_)
+  {
+    ++fixes_rejected_;
+    return;
+  }
   GnssFix fix;
   fix.t = row.t;
   fix.antenna_W = Eigen::Vector3d(row.ship_x, row.ship_y, 0.0);
   fix.yaw = heading_;
   const ShipEstimate e = gnss_.update(fix);
+  ship_now_ = e;
+  last_fix_ = row.t;
+  if (std::isnan(first_fix_))
+    first_fix_ = row.t;
+  rules_.addShip(e.p_W.x(), e.p_W.y(), e.yaw);
+  if (row.t - last_knot_ < params_.ship_interval - 1e-9)
+    return;
   const Eigen::Matrix3d R = Eigen::AngleAxisd(e.yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   const Eigen::Vector3d arm_W = R * params_.tow_point_S;
   const Eigen::Vector3d v_W = R * e.v_S;
@@ -111,14 +126,17 @@ void TowNav::takeShip(const SurveyMeasurement& row)
   pose.y = e.p_W.y();
   pose.heading = e.yaw;
   pose.speed = v_W.head<2>().norm();
-  if (row.t - last_knot_ >= params_.ship_interval - 1e-9)
-  {
-    ship_->add(row.t, e.p_W + arm_W, v_W + Eigen::Vector3d(0.0, 0.0, e.yaw_rate).cross(arm_W), pose);
-    last_knot_ = row.t;
-  }
-  rules_.addShip(row.ship_x, row.ship_y, heading_);
-  if (std::isnan(first_fix_))
-    first_fix_ = row.t;
+  ship_->add(row.t, e.p_W + arm_W, v_W + Eigen::Vector3d(0.0, 0.0, e.yaw_rate).cross(arm_W), pose);
+  last_knot_ = row.t;
+}
+
+void TowNav::shipAt(double t, Eigen::Vector3d& p_W, double& yaw, Eigen::Vector3d& tow_W) const
+{
+  const double dt = t - ship_now_.t;
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(ship_now_.yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  p_W = ship_now_.p_W + dt * (R * ship_now_.v_S);
+  yaw = ship_now_.yaw + dt * ship_now_.yaw_rate;
+  tow_W = p_W + Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix() * params_.tow_point_S;
 }
 
 void TowNav::holdMeasurements(const SurveyMeasurement& row)
@@ -126,27 +144,13 @@ void TowNav::holdMeasurements(const SurveyMeasurement& row)
   if (std::isfinite(row.cable_out))
     cable_out_ = row.cable_out;
   if (std::isfinite(row.fish_depth))
-  {
     depth_ = row.fish_depth;
-    depth_sum_ += row.fish_depth;
-    ++depth_count_;
-  }
-  if (std::isfinite(row.tension))
-  {
-    tension_sum_ += row.tension;
-    ++tension_count_;
-  }
-  if (std::isfinite(row.fish_heading))
-  {
-    heading_cos_ += std::cos(row.fish_heading);
-    heading_sin_ += std::sin(row.fish_heading);
-    ++heading_count_;
-  }
+  if (!started())
+    return;
+  if (std::isfinite(row.fish_depth) || std::isfinite(row.tension) || std::isfinite(row.fish_heading))
+    window_.push_back(row);
   if (std::isfinite(row.usbl_x) && std::isfinite(row.usbl_y) && std::isfinite(row.usbl_z))
-  {
-    usbl_.push_back(row);
-    usbl_seen_ = true;
-  }
+    fixes_.push_back(PendingFix{ row, Eigen::Matrix3Xd(3, members_.size()), false });
 }
 
 TowNavEstimate TowNav::update(const SurveyMeasurement& row)
@@ -179,14 +183,21 @@ std::optional<LaybackFixes> TowNav::baselines() const
   return rules_.at(cable_out_, depth_);
 }
 
+// The members from the steady tow at t, each with its draw of the parameters (the draws centred: their mean is the
+// prior's).
 void TowNav::startMembers(double t)
 {
   std::normal_distribution<double> normal(0.0, 1.0);
   members_.resize(params_.members);
-  for (Member& m : members_)
+  Eigen::MatrixXd draws(3, members_.size());
+  for (Eigen::Index i = 0; i < draws.cols(); ++i)
+    draws.col(i) << params_.current_sigma * normal(random_), params_.current_sigma * normal(random_),
+        params_.drag_sigma * normal(random_);
+  draws.colwise() -= draws.rowwise().mean();
+  for (size_t i = 0; i < members_.size(); ++i)
   {
-    m.x << params_.current_sigma * normal(random_), params_.current_sigma * normal(random_),
-        params_.drag_sigma * normal(random_), 0.0, 0.0;
+    Member& m = members_[i];
+    m.x << draws(0, i), draws(1, i), std::clamp(draws(2, i), -1.5, max_ln_k_), 0.0, 0.0;
     SimulationConfig c = withDragScale(config_, std::exp(m.x[2]));
     c.environment.current_W = Eigen::Vector3d(m.x[0], m.x[1], 0.0);
     m.run = std::make_unique<TowRun>(c, ship_);
@@ -201,8 +212,10 @@ void TowNav::startMembers(double t)
 
 void TowNav::advanceMembers(double t)
 {
+  std::vector<TowSnapshot> before;
   for (Member& m : members_)
   {
+    before.push_back(m.last);
     if (config_.winch.enabled && std::isfinite(cable_out_))
       m.run->setWinchCommand((cable_out_ - m.last.cable_length) / params_.winch_time);
     try
@@ -216,151 +229,64 @@ void TowNav::advanceMembers(double t)
       m.run->start(t);
     }
     m.last = m.run->snapshot();
+    integrate(m, before.back());
   }
-  ship_->dropBefore(t - 10.0);  // the runs and the estimate look no further back
+  placeFixes(t, before);
+  ship_->dropBefore(t - 10.0);  // the runs look no further back
 }
 
-// A member's run built again for its drag scale and current, its state carried over.
+// The trapezoidal time integrals of the member's depth, tension and heading (as a unit vector) since `before`.
+void TowNav::integrate(Member& m, const TowSnapshot& before)
+{
+  const double dt = m.last.t - before.t;
+  m.duration += dt;
+  m.depth += 0.5 * dt * (before.depth + m.last.depth);
+  m.tension += 0.5 * dt * (before.tension_ship + m.last.tension_ship);
+  m.heading_cos += 0.5 * dt * (std::cos(before.yaw) + std::cos(m.last.yaw));
+  m.heading_sin += 0.5 * dt * (std::sin(before.yaw) + std::sin(m.last.yaw));
+}
+
+// Each member's fish at the instant of every USBL fix the runs have now passed (linear between the two
+// snapshots; a fix of an instant before `before`, carried back by the velocity then).
+void TowNav::placeFixes(double t, const std::vector<TowSnapshot>& before)
+{
+  for (PendingFix& f : fixes_)
+  {
+    const double instant = f.fix.t - params_.usbl_latency;
+    if (f.placed || instant > t)
+      continue;
+    for (size_t i = 0; i < members_.size(); ++i)
+    {
+      const TowSnapshot& a = before[i];
+      const TowSnapshot& b = members_[i].last;
+      if (instant >= a.t && b.t > a.t)
+        f.members.col(i) = a.vehicle.p_cg_W + (instant - a.t) / (b.t - a.t) * (b.vehicle.p_cg_W - a.vehicle.p_cg_W);
+      else
+        f.members.col(i) = a.vehicle.p_cg_W - (a.t - instant) * a.vehicle.v_cg_W;
+    }
+    f.placed = true;
+  }
+}
+
+// A member's run built again for its drag scale and current, its state carried over. A run that cannot be (a
+// parted cable, a state that does not fit) keeps its drag.
 void TowNav::rebuild(Member& m)
 {
   SimulationConfig c = withDragScale(config_, std::exp(m.x[2]));
   c.environment.current_W = Eigen::Vector3d(m.x[0], m.x[1], 0.0);
-  auto run = std::make_unique<TowRun>(c, ship_);
-  if (m.run && m.run->started())
-    run->restore(m.run->saveState());
-  m.run = std::move(run);
-  m.built_ln_k = m.x[2];
-}
-
-// The measurements of one analysis and each member's prediction of them.
-struct TowNav::Observations
-{
-  std::vector<double> y, sigma;
-  std::vector<bool> usbl;                  // a USBL axis (the only rows that move the offsets)
-  std::vector<Eigen::VectorXd> predicted;  // per row, a value per member
-  void add(double value, double s, const Eigen::VectorXd& members, bool is_usbl = false)
+  try
   {
-    y.push_back(value);
-    sigma.push_back(s);
-    usbl.push_back(is_usbl);
-    predicted.push_back(members);
+    auto run = std::make_unique<TowRun>(c, ship_);
+    if (m.run && m.run->started())
+      run->restore(m.run->saveState());
+    m.run = std::move(run);
+    m.built_ln_k = m.x[2];
   }
-};
-
-void TowNav::analyse(double t)
-{
-  const int n = static_cast<int>(members_.size());
-  const double walk_time = std::sqrt(std::max(0.0, t - last_analysis_));
-  last_analysis_ = t;
-  // The random walk, its increments centred over the members (it spreads them, it does not move their mean); the
-  // offsets walk only once a USBL fix has come (without USBL nothing would ever bring them back).
-  std::normal_distribution<double> normal(0.0, 1.0);
-  const double offset_walk = usbl_seen_ ? params_.offset_walk : 0.0;
-  const ParamVector walk(params_.current_walk, params_.current_walk, params_.drag_walk, offset_walk, offset_walk);
-  Eigen::MatrixXd step(kParams, n);
-  for (int i = 0; i < n; ++i)
-    for (int k = 0; k < kParams; ++k)
-      step(k, i) = walk[k] * walk_time * normal(random_);
-  step.colwise() -= step.rowwise().mean();
-  for (int i = 0; i < n; ++i)
-    members_[i].x += step.col(i);
-  Observations obs;
-  Eigen::VectorXd pred(n);
-  if (depth_count_ > 0)
+  catch (const std::exception&)
   {
-    for (int i = 0; i < n; ++i)
-      pred[i] = members_[i].last.depth;
-    obs.add(depth_sum_ / depth_count_, params_.depth_sigma, pred);
-  }
-  if (tension_count_ > 0)
-  {
-    const double tension = tension_sum_ / tension_count_;
-    for (int i = 0; i < n; ++i)
-      pred[i] = members_[i].last.tension_ship;
-    obs.add(tension, params_.tension_sigma * std::max(1.0, std::abs(tension)), pred);
-  }
-  if (heading_count_ > 0)
-  {
-    const double heading = std::atan2(heading_sin_, heading_cos_);
-    for (int i = 0; i < n; ++i)  // each member's heading on the measurement's side of the circle
-      pred[i] = heading + wrapAngle(members_[i].last.yaw - heading);
-    obs.add(heading, params_.heading_sigma, pred);
-  }
-  depth_sum_ = tension_sum_ = heading_cos_ = heading_sin_ = 0.0;
-  depth_count_ = tension_count_ = heading_count_ = 0;
-  for (const SurveyMeasurement& fix : usbl_)
-    addUsbl(fix, obs);
-  usbl_.clear();
-  if (!obs.y.empty())
-    ensembleUpdate(obs);
-  for (Member& m : members_)
-  {
-    m.x[0] = std::clamp(m.x[0], -5.0, 5.0);
-    m.x[1] = std::clamp(m.x[1], -5.0, 5.0);
-    m.x[2] = std::clamp(m.x[2], -1.5, 1.5);
-    if (std::abs(m.x[2] - m.built_ln_k) > 0.02)
-      rebuild(m);
-    m.run->setCurrent(Eigen::Vector3d(m.x[0], m.x[1], 0.0));
-  }
-  next_analysis_ = t + params_.analysis_interval;
-}
-
-// A USBL fix's three axes, each member's fish carried back to the fix's instant by its velocity, plus its
-// offset; a fix further than usbl_gate sigma from the ensemble on any axis is rejected.
-void TowNav::addUsbl(const SurveyMeasurement& fix, Observations& obs)
-{
-  const int n = static_cast<int>(members_.size());
-  const Eigen::Vector3d z(fix.usbl_x, fix.usbl_y, fix.usbl_z);
-  Eigen::Matrix3Xd p(3, n);
-  for (int i = 0; i < n; ++i)
-  {
-    const Member& m = members_[i];
-    const double back = m.last.t - (fix.t - params_.usbl_latency);
-    p.col(i) = m.last.vehicle.p_cg_W - back * m.last.vehicle.v_cg_W + Eigen::Vector3d(m.x[3], m.x[4], 0.0);
-  }
-  const Eigen::Vector3d mean = p.rowwise().mean();
-  const Eigen::Vector2d ship(ship_->pose(fix.t).x, ship_->pose(fix.t).y);
-  const double range = std::hypot((mean.head<2>() - ship).norm(), mean.z());
-  const double sigma = params_.usbl_sigma + params_.usbl_range_sigma * range;
-  for (int a = 0; a < 3; ++a)
-  {
-    const double spread = (p.row(a).array() - mean[a]).square().sum() / std::max(1, n - 1);
-    if (std::abs(z[a] - mean[a]) > params_.usbl_gate * std::sqrt(spread + sigma * sigma))
-    {
-      ++usbl_rejected_;
-      return;
-    }
-  }
-  for (int a = 0; a < 3; ++a)
-    obs.add(z[a], sigma, p.row(a).transpose(), true);
-}
-
-// The ensemble Kalman filter's analysis with perturbed observations; the offsets take only USBL rows.
-void TowNav::ensembleUpdate(const Observations& obs)
-{
-  const int n = static_cast<int>(members_.size()), rows = static_cast<int>(obs.y.size());
-  Eigen::MatrixXd X(kParams, n), Y(rows, n);
-  for (int i = 0; i < n; ++i)
-    X.col(i) = members_[i].x;
-  for (int r = 0; r < rows; ++r)
-    Y.row(r) = obs.predicted[r].transpose();
-  const Eigen::MatrixXd A = X.colwise() - X.rowwise().mean();
-  const Eigen::MatrixXd HA = Y.colwise() - Y.rowwise().mean();
-  Eigen::MatrixXd Cyy = HA * HA.transpose() / (n - 1);
-  for (int r = 0; r < rows; ++r)
-    Cyy(r, r) += obs.sigma[r] * obs.sigma[r];
-  const Eigen::MatrixXd Cxy = A * HA.transpose() / (n - 1);
-  Eigen::MatrixXd K = Cyy.ldlt().solve(Cxy.transpose()).transpose();
-  for (int r = 0; r < rows; ++r)
-    if (!obs.usbl[r])
-      K.block(3, r, 2, 1).setZero();
-  std::normal_distribution<double> normal(0.0, 1.0);
-  for (int i = 0; i < n; ++i)
-  {
-    Eigen::VectorXd d(rows);
-    for (int r = 0; r < rows; ++r)
-      d[r] = obs.y[r] + obs.sigma[r] * normal(random_) - Y(r, i);
-    members_[i].x += K * d;
+    if (!m.run)
+      throw;
+    m.x[2] = m.built_ln_k;
   }
 }
 
@@ -380,8 +306,9 @@ TowNavEstimate TowNav::estimateAt(double t) const
 {
   TowNavEstimate e;
   e.t = t;
-  e.usbl_rejected = usbl_rejected_;
   e.rows_rejected = rows_rejected_;
+  e.fixes_rejected = fixes_rejected_;
+  e.usbl_rejected = usbl_rejected_;
   if (!started())
     return e;
   const int n = static_cast<int>(members_.size());
@@ -401,10 +328,12 @@ TowNavEstimate TowNav::estimateAt(double t) const
   const Eigen::Matrix3Xd a = p.colwise() - e.p_W;
   e.covariance =
       a * a.transpose() / std::max(1, n - 1) + params_.model_sigma * params_.model_sigma * Eigen::Matrix3d::Identity();
-  const ShipPose pose = ship_->pose(t);
-  const Eigen::Vector3d d = e.p_W - ship_->towPoint(t).p_W;
-  e.layback = -(d.x() * std::cos(pose.heading) + d.y() * std::sin(pose.heading));
-  e.cross_track = -d.x() * std::sin(pose.heading) + d.y() * std::cos(pose.heading);
+  Eigen::Vector3d ship, tow;
+  double yaw = 0.0;
+  shipAt(t, ship, yaw, tow);
+  const Eigen::Vector3d d = e.p_W - tow;
+  e.layback = -(d.x() * std::cos(yaw) + d.y() * std::sin(yaw));
+  e.cross_track = -d.x() * std::sin(yaw) + d.y() * std::cos(yaw);
   return e;
 }
 

@@ -28,13 +28,14 @@ public:
   // otherwise); the track is kept for `memory` metres behind the tow point (> 0; at least the longest cable out).
   LaybackRules(const Eigen::Vector3d& tow_point_S, double catenary_factor, double memory = 20000.0);
 
-  // The ship's reference point [m] and heading [rad] (ENU) at a time; the tow point's track grows by it.
+  // The ship's reference point [m] and heading [rad] (ENU) at a time; the tow point's track grows by it (a point
+  // within 1 m of the one before the newest replaces the newest, so that a fix's noise does not lengthen it).
   void addShip(double x, double y, double heading);
   bool hasShip() const { return !track_.empty(); }
   // The three fixes for a cable out L [m] and the fish's depth [m] (std::logic_error before addShip).
   LaybackFixes at(double cable_out, double depth) const;
   // The point `distance` [m] back along the tow point's track from its newest point; past the oldest point,
-  // on along the track's first piece (or against the heading when the track is one point).
+  // on along the track's oldest piece (or against the heading when the track has no piece).
   Eigen::Vector2d backAlongTrack(double distance) const;
 
 private:

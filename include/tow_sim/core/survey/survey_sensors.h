@@ -59,6 +59,8 @@ class SurveySensors
 public:
   // Validates (prefix "sensors").
   explicit SurveySensors(const SurveySensorParams& params);
+  SurveySensors(const SurveySensors&) = delete;  // its streams point into its own parameters
+  SurveySensors& operator=(const SurveySensors&) = delete;
 
   // A snapshot of the run, in time order (an earlier one is ignored): samples every channel due since the
   // previous one.

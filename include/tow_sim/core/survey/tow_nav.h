@@ -37,12 +37,12 @@ struct TowNavParams
 {
   int members = 16;                 // [-] tow runs in the ensemble
   int seed = 1;                     // the ensemble's random draws
-  double start_after = 10.0;        // [s] of ship fixes before the runs start (the ship's velocity settles)
+  double start_after = 30.0;        // [s] of ship fixes before the runs start (the track's velocity settles)
   double gnss_smoothing = 5.0;      // [s] the ship track's smoothing time (GnssTrack)
   double ship_interval = 5.0;       // [s] the runs' ship track: a smoothed fix this often (a rough track is stiff)
   double analysis_interval = 20.0;  // [s] (the cable answers a change of current over minutes: see survey.md)
   double current_sigma = 0.3;       // [m/s] the current's prior spread per horizontal axis (mean zero)
-  double current_walk = 0.003;      // [m/s/sqrt(s)] its random walk
+  double current_walk = 0.0015;     // [m/s/sqrt(s)] its random walk
   double drag_sigma = 0.2;          // [-] the prior spread of ln(drag scale) (mean zero: the configured drag)
   double drag_walk = 0.002;         // [1/sqrt(s)]
   double offset_blend = 30.0;       // [s] the estimate takes up an offset's change over this time (no jumps)
@@ -72,7 +72,9 @@ struct TowNavEstimate
   double cross_track = 0.0;                              // [m] off the tow point's line, positive to port
   Eigen::Vector2d current = Eigen::Vector2d::Zero();     // [m/s] the members' mean
   double drag_scale = 1.0;                               // [-] exp of the mean ln k
-  long usbl_rejected = 0, rows_rejected = 0;             // measurements refused so far
+  // Refused so far: rows (no time, or earlier than the last), ship fixes (not after the previous fix), USBL fixes
+  // (outside the gate).
+  long rows_rejected = 0, fixes_rejected = 0, usbl_rejected = 0;
 };
 
 class TowNav
@@ -81,44 +83,71 @@ public:
   // Validates both (std::invalid_argument naming the key).
   TowNav(const SimulationConfig& config, const TowNavParams& params);
   ~TowNav();
+  TowNav(const TowNav&) = delete;
+  TowNav& operator=(const TowNav&) = delete;
 
   // One row of measurements, in time order (a row earlier than the last, or with a non-finite time, is counted
-  // in rows_rejected and changes nothing). Returns the estimate at the row's time.
+  // in rows_rejected and changes nothing; a ship fix at the previous fix's time is counted in fixes_rejected).
+  // Returns the estimate at the row's time.
   TowNavEstimate update(const SurveyMeasurement& row);
-  // The baselines at the last row (nullopt until a ship fix, a cable out and a depth have come).
+  // The baselines at the last row (nullopt until a ship fix, a cable out and a depth have come), on the smoothed
+  // ship track.
   std::optional<LaybackFixes> baselines() const;
   bool started() const { return !members_.empty(); }
 
 private:
-  struct Member;
+  // One member: its run, its parameters (c_x, c_y, ln k, b_x, b_y) and, since the last analysis, the time
+  // integrals of what it predicts (to compare with the measurements' means over the same time).
+  struct Member
+  {
+    std::unique_ptr<TowRun> run;
+    Eigen::Matrix<double, 5, 1> x = Eigen::Matrix<double, 5, 1>::Zero();
+    double built_ln_k = 0.0;                          // the ln k its run was built with
+    TowSnapshot last;                                 // at the last advance
+    Eigen::Vector2d shown = Eigen::Vector2d::Zero();  // the offset in the estimate: follows x[3], x[4] smoothly
+    double duration = 0.0, depth = 0.0, tension = 0.0, heading_cos = 0.0, heading_sin = 0.0;  // integrals
+  };
+  // A USBL fix and, once the runs have passed its instant, each member's fish there.
+  struct PendingFix
+  {
+    SurveyMeasurement fix;
+    Eigen::Matrix3Xd members;
+    bool placed = false;
+  };
   struct Observations;
   void takeShip(const SurveyMeasurement& row);
   void holdMeasurements(const SurveyMeasurement& row);
   void startMembers(double t);
   void advanceMembers(double t);
+  void integrate(Member& m, const TowSnapshot& before);
+  void placeFixes(double t, const std::vector<TowSnapshot>& before);
   void analyse(double t);
-  void addUsbl(const SurveyMeasurement& fix, Observations& obs);
+  void addWindowMeans(double t, Observations& obs);
+  void addUsbl(const PendingFix& pending, Observations& obs);
   void ensembleUpdate(const Observations& obs);
+  void applyParameters();
   void rebuild(Member& m);
   void blendOffsets(double t);
+  // The ship's pose at t from the GNSS track's last estimate: its reference point, heading and the tow point.
+  void shipAt(double t, Eigen::Vector3d& p_W, double& yaw, Eigen::Vector3d& tow_W) const;
   TowNavEstimate estimateAt(double t) const;
 
   SimulationConfig config_;
   TowNavParams params_;
+  double max_ln_k_ = 1.5;  // the largest drag scale the configuration's ranges allow (ln)
   std::shared_ptr<ShipHistory> ship_;
   GnssTrack gnss_;
+  ShipEstimate ship_now_;  // the GNSS track's latest
   LaybackRules rules_;
   std::mt19937_64 random_;
   std::vector<Member> members_;
-  double t_ = -1e300, first_fix_ = NAN, heading_ = NAN, next_analysis_ = 0.0, last_analysis_ = 0.0, last_knot_ = -1e300,
-         offsets_at_ = 0.0;
-  double cable_out_ = NAN, depth_ = NAN;  // the latest (the baselines')
-  // Since the last analysis: the sums of the depths, tensions and the fish heading's cosines and sines, and how many.
-  double depth_sum_ = 0.0, tension_sum_ = 0.0, heading_cos_ = 0.0, heading_sin_ = 0.0;
-  int depth_count_ = 0, tension_count_ = 0, heading_count_ = 0;
-  std::vector<SurveyMeasurement> usbl_;  // fixes since the last analysis
-  long usbl_rejected_ = 0, rows_rejected_ = 0;
-  bool usbl_seen_ = false;
+  double t_ = -1e300, first_fix_ = NAN, last_fix_ = NAN, heading_ = NAN;
+  double next_analysis_ = 0.0, last_analysis_ = 0.0, last_knot_ = -1e300, offsets_at_ = 0.0;
+  double cable_out_ = NAN, depth_ = NAN;   // the latest (the baselines')
+  std::vector<SurveyMeasurement> window_;  // rows with a depth, tension or fish heading not yet analysed
+  std::vector<PendingFix> fixes_;          // USBL fixes not yet analysed
+  long rows_rejected_ = 0, fixes_rejected_ = 0, usbl_rejected_ = 0;
+  bool usbl_seen_ = false;  // a USBL fix has passed the gate: the offsets walk from then on
 };
 
 }  // namespace tow_sim
