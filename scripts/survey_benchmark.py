@@ -1,13 +1,14 @@
 #!/usr/bin/env python3
 """The towfish estimator against the layback rules on a lawn-mower survey (issue 29, docs/survey.md).
 
-    survey_benchmark.py BIN_DIR OUT_DIR [--seeds N] [--plot PNG] [--nav-config YAML] [--reuse]
+    survey_benchmark.py BIN_DIR OUT_DIR [--seeds N] [--plot PNG] [--doc MARKDOWN] [--nav-config YAML] [--reuse]
 
 Runs bench/survey/lawnmower.yaml with tow_sim_batch (the truth and its measurements.csv), then tow_sim_nav with
 bench/survey/nav.yaml (no current, drag 20 % high) for each seed of the ensemble, once with the USBL fixes
 and once with them taken out. It prints a markdown table of the horizontal error (RMS and 95th percentile) on
-the lines and in the turns, for the estimate and each rule, and with --plot draws the tracks and the errors
-(the figure's footer names the commit and the date).
+the lines and in the turns, for the estimate and each rule; with --doc writes it into that file between
+<!-- survey-bench --> and <!-- /survey-bench -->, under a line naming the commit, the date and the machine; with
+--plot draws the tracks and the errors (the figure's footer names the commit and the date).
 
 A turn lasts from when the ship starts turning until the fish's heading is back within 10 degrees of the
 ship's; the lines are the rest after the first 300 s (the estimator's start-up).
@@ -82,6 +83,7 @@ def main():
     parser.add_argument("out_dir")
     parser.add_argument("--seeds", type=int, default=3)
     parser.add_argument("--plot")
+    parser.add_argument("--doc", help="a markdown file whose survey-bench block gets the table")
     parser.add_argument("--nav-config", default=os.path.join(REPO, "bench/survey/nav.yaml"),
                         help="the estimator's configuration (default bench/survey/nav.yaml)")
     parser.add_argument("--reuse", action="store_true", help="keep the runs already in OUT_DIR (table and plot only)")
@@ -110,21 +112,46 @@ def main():
     t = results[("USBL", 1)][0]
     turns = turn_mask(truth, t)
     lines = ~turns & (t > 300.0)
-    print("| horizontal error [m], RMS / 95th percentile | lines | turns |")
-    print("|---|---|---|")
-    first = results[("USBL", 1)][1]
-    for name in ("pythagoras", "track", "catenary"):
-        (lr, lp), (tr, tp) = stats(first[name][lines]), stats(first[name][turns])
-        print(f"| {name} rule | {lr:.1f} / {lp:.1f} | {tr:.1f} / {tp:.1f} |")
-    for case in measurements:
-        cells = []
-        for mask in (lines, turns):
-            s = [stats(results[(case, seed)][1]["tow_nav"][mask]) for seed in range(1, args.seeds + 1)]
-            cells.append(f"{min(x[0] for x in s):.1f}–{max(x[0] for x in s):.1f} / "
-                         f"{min(x[1] for x in s):.1f}–{max(x[1] for x in s):.1f}")
-        print(f"| tow_nav, {case} ({args.seeds} seeds) | {cells[0]} | {cells[1]} |")
+    table = markdown_table(results, list(measurements), args.seeds, lines, turns)
+    print(table)
+    if args.doc:
+        write_doc(args.doc, table)
     if args.plot:
         plot(args.plot, truth, results, t, turns)
+
+
+def markdown_table(results, cases, seeds, lines, turns):
+    rows = ["| horizontal error [m], RMS / 95th percentile | lines | turns |", "|---|---|---|"]
+    first = results[(cases[0], 1)][1]
+    names = {"pythagoras": "Pythagoras", "track": "follow-the-dog", "catenary": "catenary factor (0.9)"}
+    for name, label in names.items():
+        (lr, lp), (tr, tp) = stats(first[name][lines]), stats(first[name][turns])
+        rows.append(f"| {label} | {lr:.1f} / {lp:.1f} | {tr:.1f} / {tp:.1f} |")
+    for case in cases:
+        cells = []
+        for mask in (lines, turns):
+            s = [stats(results[(case, seed)][1]["tow_nav"][mask]) for seed in range(1, seeds + 1)]
+            cells.append(f"{min(x[0] for x in s):.1f}–{max(x[0] for x in s):.1f} / "
+                         f"{min(x[1] for x in s):.1f}–{max(x[1] for x in s):.1f}")
+        rows.append(f"| tow_nav, {case} ({seeds} seeds) | {cells[0]} | {cells[1]} |")
+    return "\n".join(rows)
+
+
+def provenance():
+    commit = subprocess.run(["git", "-C", REPO, "rev-parse", "--short", "HEAD"], capture_output=True,
+                            text=True).stdout.strip() or "unknown"
+    return commit, datetime.date.today().isoformat()
+
+
+def write_doc(path, table):
+    text = open(path).read()
+    start, end = "<!-- survey-bench -->", "<!-- /survey-bench -->"
+    if start not in text or end not in text:
+        sys.exit(f"{path}: no {start} ... {end} block")
+    commit, date = provenance()
+    block = (f"{start}\n_Measured by `scripts/survey_benchmark.py` at commit {commit} on {date}, "
+             f"{os.cpu_count()} cores._\n\n{table}\n")
+    open(path, "w").write(text[:text.index(start)] + block + text[text.index(end):])
 
 
 def plot(path, truth, results, t, turns):
@@ -153,10 +180,8 @@ def plot(path, truth, results, t, turns):
     err.set_xlabel("t [s]")
     err.set_ylabel("horizontal error [m]")
     err.legend(loc="upper left", fontsize=8, ncol=2)
-    commit = subprocess.run(["git", "-C", REPO, "rev-parse", "--short", "HEAD"], capture_output=True,
-                            text=True).stdout.strip() or "unknown"
-    fig.text(0.01, 0.005, f"scripts/survey_benchmark.py, commit {commit}, {datetime.date.today().isoformat()}",
-             fontsize=7, color="0.4")
+    commit, date = provenance()
+    fig.text(0.01, 0.005, f"scripts/survey_benchmark.py, commit {commit}, {date}", fontsize=7, color="0.4")
     fig.tight_layout(rect=(0, 0.02, 1, 1))
     fig.savefig(path, dpi=110)
 
