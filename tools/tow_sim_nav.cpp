@@ -113,9 +113,11 @@ int run(const std::string& config_path, const std::string& measurements_path, co
                  params.start_after);
   std::printf(
       "tow_sim_nav: %zu rows (%.0f s of survey) in %.1f s; current estimated (%.3f, %.3f) m/s, drag scale "
-      "%.3f; rejected %ld rows, %ld ship fixes, %ld USBL fixes; wrote %s/estimate.csv, baselines.csv\n",
+      "%.3f; rejected %ld rows, %ld ship fixes, %ld USBL fixes, %ld depths; wrote %s/estimate.csv, "
+      "baselines.csv\n",
       rows.size(), rows.empty() ? 0.0 : rows.back().t - rows.front().t, wall, last.current.x(), last.current.y(),
-      last.drag_scale, last.rows_rejected, last.fixes_rejected, last.usbl_rejected, out_dir.c_str());
+      last.drag_scale, last.rows_rejected, last.fixes_rejected, last.usbl_rejected, last.depths_rejected,
+      out_dir.c_str());
   return 0;
 }
 

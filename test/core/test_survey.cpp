@@ -294,13 +294,15 @@ simulation: {duration: 1030.0, output_interval: 0.5, shape_interval: 1030.0}
   EXPECT_GT(covered, 0.8 * e.normalised.size());
 }
 
-// A row at no time or earlier than the last, a second ship fix at the same time, and a USBL fix 500 m off in a
-// survey without USBL change nothing: the estimate after them is bit-identical to the one without them, and each
-// is counted.
+// A row at no time or earlier than the last, a second ship fix at the same time, a USBL fix 500 m off in a
+// survey without USBL and a depth below the seabed change nothing: the estimate after them is bit-identical to the one
+// without them, and each is counted.
 TEST(TowNav, RefusesBadRowsARepeatedFixAndAnOutlyingFixWithoutAJump)
 {
   const SurveyRun run = runSurvey(std::string(kStraight) + "sensors: {usbl: {enabled: false}}\n");
-  const SimulationConfig config = loadConfig(YAML::Load("cable: {length: 150.0, segments: 10}"));
+  // With a seabed the fish never reaches (its depth there is about 50 m), so a depth of 150 m is below it.
+  const SimulationConfig config =
+      loadConfig(YAML::Load("{cable: {length: 150.0, segments: 10}, seabed: {type: flat, depth: 100.0}}"));
   TowNav clean(config, TowNavParams()), bad(config, TowNavParams());
   TowNavEstimate a, b;
   for (const SurveyMeasurement& row : run.rows)
@@ -310,7 +312,9 @@ TEST(TowNav, RefusesBadRowsARepeatedFixAndAnOutlyingFixWithoutAJump)
     if (std::abs(row.t - 200.0) < 1e-9)
     {
       ASSERT_FALSE(std::isnan(row.ship_x));  // a GNSS row
-      SurveyMeasurement nan_time = row, earlier = row, repeated, outlier;
+      SurveyMeasurement nan_time = row, earlier = row, repeated, outlier, too_deep;
+      too_deep.t = row.t;
+      too_deep.fish_depth = 150.0;
       nan_time.t = NAN;
       earlier.t = row.t - 1.0;
       repeated.t = row.t;  // another fix at the same time (and nothing else)
@@ -320,13 +324,14 @@ TEST(TowNav, RefusesBadRowsARepeatedFixAndAnOutlyingFixWithoutAJump)
       outlier.usbl_x = b.p_W.x() + 500.0;
       outlier.usbl_y = b.p_W.y();
       outlier.usbl_z = b.p_W.z();
-      for (const SurveyMeasurement& r : { nan_time, earlier, repeated, outlier })
+      for (const SurveyMeasurement& r : { nan_time, earlier, repeated, outlier, too_deep })
         b = bad.update(r);
     }
   }
   EXPECT_EQ(b.rows_rejected - a.rows_rejected, 2);
   EXPECT_EQ(b.fixes_rejected - a.fixes_rejected, 1);
   EXPECT_EQ(b.usbl_rejected - a.usbl_rejected, 1);
+  EXPECT_EQ(b.depths_rejected - a.depths_rejected, 1);
   EXPECT_GT(a.t, 290.0);
   EXPECT_EQ(a.p_W, b.p_W);
   EXPECT_EQ(a.covariance, b.covariance);

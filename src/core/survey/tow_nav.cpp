@@ -91,6 +91,8 @@ TowNav::TowNav(const SimulationConfig& config, const TowNavParams& params)
 {
   validate(params_, "nav");
   TowRun check(config_, ship_);  // the configuration's own checks, before any row
+  if (check.seabed())
+    seabed_ = std::make_unique<Seabed>(check.seabed()->params());
 }
 
 TowNav::~TowNav() = default;
@@ -139,8 +141,22 @@ void TowNav::shipAt(double t, Eigen::Vector3d& p_W, double& yaw, Eigen::Vector3d
   tow_W = p_W + Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix() * params_.tow_point_S;
 }
 
-void TowNav::holdMeasurements(const SurveyMeasurement& row)
+// A depth more than 3 depth_sigma below the seabed under the estimate (or under the ship before the runs start).
+bool TowNav::belowSeabed(double depth) const
 {
+  if (!seabed_)
+    return false;
+  const Eigen::Vector3d at = started() ? estimateAt(t_).p_W : ship_now_.p_W;
+  return -depth < seabed_->bottomZ(at.x(), at.y()) - 3.0 * params_.depth_sigma;
+}
+
+void TowNav::holdMeasurements(SurveyMeasurement row)
+{
+  if (std::isfinite(row.fish_depth) && belowSeabed(row.fish_depth))
+  {
+    ++depths_rejected_;
+    row.fish_depth = SurveyMeasurement::kNone;
+  }
   if (std::isfinite(row.cable_out))
     cable_out_ = row.cable_out;
   if (std::isfinite(row.fish_depth))
@@ -309,6 +325,7 @@ TowNavEstimate TowNav::estimateAt(double t) const
   e.rows_rejected = rows_rejected_;
   e.fixes_rejected = fixes_rejected_;
   e.usbl_rejected = usbl_rejected_;
+  e.depths_rejected = depths_rejected_;
   if (!started())
     return e;
   const int n = static_cast<int>(members_.size());

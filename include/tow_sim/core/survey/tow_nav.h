@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "tow_sim/core/environment/seabed.h"
 #include "tow_sim/core/param_table.h"
 #include "tow_sim/core/run/gnss_track.h"
 #include "tow_sim/core/run/tow_run.h"
@@ -73,8 +74,8 @@ struct TowNavEstimate
   Eigen::Vector2d current = Eigen::Vector2d::Zero();     // [m/s] the members' mean
   double drag_scale = 1.0;                               // [-] exp of the mean ln k
   // Refused so far: rows (no time, or earlier than the last), ship fixes (not after the previous fix), USBL fixes
-  // (outside the gate).
-  long rows_rejected = 0, fixes_rejected = 0, usbl_rejected = 0;
+  // (outside the gate), depths (below the configured seabed under the estimate by more than 3 depth_sigma).
+  long rows_rejected = 0, fixes_rejected = 0, usbl_rejected = 0, depths_rejected = 0;
 };
 
 class TowNav
@@ -116,7 +117,8 @@ private:
   };
   struct Observations;
   void takeShip(const SurveyMeasurement& row);
-  void holdMeasurements(const SurveyMeasurement& row);
+  void holdMeasurements(SurveyMeasurement row);
+  bool belowSeabed(double depth) const;
   void startMembers(double t);
   void advanceMembers(double t);
   void integrate(Member& m, const TowSnapshot& before);
@@ -146,8 +148,9 @@ private:
   double cable_out_ = NAN, depth_ = NAN;   // the latest (the baselines')
   std::vector<SurveyMeasurement> window_;  // rows with a depth, tension or fish heading not yet analysed
   std::vector<PendingFix> fixes_;          // USBL fixes not yet analysed
-  long rows_rejected_ = 0, fixes_rejected_ = 0, usbl_rejected_ = 0;
-  bool usbl_seen_ = false;  // a USBL fix has passed the gate: the offsets walk from then on
+  long rows_rejected_ = 0, fixes_rejected_ = 0, usbl_rejected_ = 0, depths_rejected_ = 0;
+  std::unique_ptr<Seabed> seabed_;  // the configuration's, if it has one (depths below it are refused)
+  bool usbl_seen_ = false;          // a USBL fix has passed the gate: the offsets walk from then on
 };
 
 }  // namespace tow_sim
