@@ -285,8 +285,8 @@ SimulationConfig loadConfig(const YAML::Node& root, const std::string& prefix, c
 
 std::vector<std::string> configurationFileKeys()
 {
-  std::vector<std::string> keys = { "cable", "vehicle", "environment",   "numerics",
-                                    "winch", "seabed",  "sensor_frames", "nav" };
+  std::vector<std::string> keys = { "cable",  "vehicle",       "environment", "numerics", "winch",
+                                    "seabed", "sensor_frames", "nav",         "sensors" };
   for (const std::string& key : topLevelKeys(nodeParams()))
     keys.push_back(key);
   return keys;

@@ -16,4 +16,18 @@ TowNavParams loadNavParams(const YAML::Node& root, const std::string& prefix)
   return params;
 }
 
+SurveySensorParams loadSensorParams(const YAML::Node& root, const std::string& prefix)
+{
+  SurveySensorParams params;
+  detail::Section top(root, prefix);
+  if (!top.has("sensors"))
+    return params;
+  params.enabled = true;
+  detail::ParamReader reader(top.child("sensors"));
+  reader.read(surveySensorParams(), params);
+  reader.finish();
+  validate(params, reader.at("").name());
+  return params;
+}
+
 }  // namespace tow_sim

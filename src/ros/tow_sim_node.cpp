@@ -8,6 +8,7 @@
 
 #include "tow_sim/CableState.h"
 #include "tow_sim/FinLoads.h"
+#include "tow_sim/config/nav_params.h"
 #include "tow_sim/ros/conversions.h"
 #include "tow_sim/ros/markers.h"
 
@@ -55,6 +56,25 @@ SimulationConfig readConfig(const ros::NodeHandle& pnh, const NodeParams& params
     if (isImplicit(config.numerics.stepper))
       config.numerics.max_step = std::min(config.numerics.max_step, params.max_command_lag);
     return config;
+  }
+  catch (const std::invalid_argument& e)
+  {
+    throw ros_conv::withSlashes(e);
+  }
+}
+
+// The survey sensors (a sensors: section), or none.
+std::unique_ptr<SurveyPublisher> surveyPublisher(ros::NodeHandle nh, const ros::NodeHandle& pnh,
+                                                 const NodeParams& params, const SimulationConfig& config)
+{
+  try
+  {
+    const SurveySensorParams sensors = loadSensorParams(ros_conv::privateParameters(pnh), pnh.getNamespace() + "/");
+    if (!sensors.enabled)
+      return nullptr;
+    return std::make_unique<SurveyPublisher>(nh, sensors, params.world_frame, params.vehicle_frame,
+                                             config.environment.water_density, config.environment.gravity,
+                                             pnh.getNamespace() + "/");
   }
   catch (const std::invalid_argument& e)
   {
@@ -113,6 +133,7 @@ TowSimNode::TowSimNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     ship_trail_ = std::make_unique<TrackTrail>(params_.trail_duration);
     vehicle_trail_ = std::make_unique<TrackTrail>(params_.trail_duration);
   }
+  survey_ = surveyPublisher(nh_, pnh_, params_, config_);
   diagnostics_.setHardwareID("tow_sim");
   diagnostics_.add("simulation", this, &TowSimNode::diagnose);
 
@@ -314,11 +335,15 @@ void TowSimNode::publishTick()
       ship_trail_->clear();
       vehicle_trail_->clear();
     }
+    if (survey_)
+      survey_->reset();
   }
   if (live_.absolute(0.0) != tf_origin_ns_)  // a new time axis (the ship was forgotten)
   {
     tf_origin_ns_ = live_.absolute(0.0);
     last_tf_stamp_ = ros::Time();
+    if (survey_)
+      survey_->reset();
   }
   std::optional<TowSnapshot> output;
   try
@@ -356,6 +381,8 @@ void TowSimNode::publishTick()
   ship_force_pub_.publish(ros_conv::toShipTowForce(snapshot, header));
   vehicle_force_pub_.publish(ros_conv::toVehicleTowForce(snapshot, header, params_.vehicle_frame));
   joint_state_pub_.publish(ros_conv::toJointState(snapshot, header, params_.vehicle_frame));
+  if (survey_)
+    survey_->publish(snapshot, [this](double t) { return stamp(t); });
   if (ship_trail_)
   {
     ship_trail_->add(snapshot.t, Eigen::Vector3d(snapshot.ship.x, snapshot.ship.y, 0.0));

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -13,6 +14,7 @@
 
 #include "core/temp_file.h"
 #include "tow_sim/config/config.h"
+#include "tow_sim/config/nav_params.h"
 #include "tow_sim/core/constants.h"
 #include "tow_sim/core/io/measurement_csv.h"
 #include "tow_sim/core/survey/layback_rules.h"
@@ -133,6 +135,71 @@ TEST(SurveySensors, AScenarioWritesItsSensorsBackAndMayTurnThemOff)
   EXPECT_THROW(loadScenario(YAML::Load(std::string(kStraight) + "sensors: {usbl: {dropout: 1.0}}\n")),
                std::invalid_argument);
   EXPECT_THROW(loadScenario(YAML::Load(std::string(kStraight) + "sensors: {dpeth: {}}\n")), std::invalid_argument);
+}
+
+// The samples tow_sim_node publishes are the rows' values sample by sample (the same streams), stamped with the
+// instant they measure; a USBL fix in the ship frame is the world fix seen from the ship then (heading 0 here).
+TEST(SurveySensors, SamplesCarryTheRowsValuesAndTheUsblFixInTheShipFrame)
+{
+  const Scenario sc =
+      loadScenario(YAML::Load(std::string(kStraight) + "sensors: {usbl: {rate: 1.0, latency: 2.0, dropout: 0.0}}\n"));
+  SurveySensors rows(sc.sensors), samples(sc.sensors, SurveySensors::Output::kSamples);
+  std::ostringstream series, shapes;
+  BatchResult result;
+  std::map<double, SurveyMeasurement> by_time;
+  std::vector<SensorSample> all;
+  runScenario(sc, series, shapes, result, {}, {}, 10,
+              [&](const TowSnapshot& s)
+              {
+                rows.observe(s);
+                samples.observe(s);
+                for (const SurveyMeasurement& r : rows.take(s.t))
+                  by_time[r.t] = r;
+                for (const SensorSample& x : samples.takeSamples(s.t))
+                  all.push_back(x);
+              });
+  int usbl = 0;
+  for (const SensorSample& x : all)
+  {
+    ASSERT_EQ(by_time.count(x.arrives), 1u);
+    const std::array<double, SurveyMeasurement::kColumns> row = by_time[x.arrives].values(), own = x.values.values();
+    for (int i = 1; i < SurveyMeasurement::kColumns; ++i)
+    {
+      if (std::isnan(own[i]))
+        continue;
+      EXPECT_EQ(own[i], row[i]);
+    }
+    if (x.kind != SensorKind::kUsbl)
+      continue;
+    ++usbl;
+    EXPECT_NEAR(x.arrives - x.measured, 2.0, 1e-12);
+    // The ship left x = 0 at 2 m/s on heading 0: in its frame the fix is the world fix less (2 t, 0, 0).
+    EXPECT_NEAR(x.usbl_S.x(), x.values.usbl_x - 2.0 * x.measured, 1e-9);
+    EXPECT_NEAR(x.usbl_S.y(), x.values.usbl_y, 1e-9);
+    EXPECT_NEAR(x.usbl_S.z(), x.values.usbl_z, 1e-12);
+  }
+  EXPECT_EQ(usbl, 299);  // 0 .. 298 s; those of 299 and 300 s arrive after the run
+}
+
+// tow_sim_node's reading of a configuration's sensors: section: absent, present, and a misspelt key named.
+TEST(SurveySensors, TheNodesSensorsSectionIsReadOrRefusedByName)
+{
+  EXPECT_FALSE(loadSensorParams(YAML::Load("cable: {length: 100.0}")).enabled);
+  const SurveySensorParams p = loadSensorParams(YAML::Load("sensors: {origin_latitude: 43.1, ship_frame: boat}"));
+  EXPECT_TRUE(p.enabled);
+  EXPECT_EQ(p.origin_latitude, 43.1);
+  EXPECT_EQ(p.ship_frame, "boat");
+  try
+  {
+    loadSensorParams(YAML::Load("sensors: {usbl: {ratee: 1.0}}"), "/tow_sim/");
+    ADD_FAILURE() << "a misspelt key was accepted";
+  }
+  catch (const std::invalid_argument& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("ratee"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(loadSensorParams(YAML::Load("sensors: {origin_latitude: 91.0}")), std::invalid_argument);
+  EXPECT_THROW(loadSensorParams(YAML::Load("sensors: {ship_frame: ''}")), std::invalid_argument);
 }
 
 // The tow point 20 m aft; the ship along +x to (1000, 0), then turned to port (+y) and on to (1000, 300).

@@ -24,8 +24,8 @@ SimulationConfig loadConfigFile(const std::string& path);
 
 // The top-level keys a configuration file may hold, so that a misspelt one is refused: the six sections,
 // tow_sim_node's own parameters (NodeParams: the file is loaded into its private namespace) and
-// tow_sim_urdf's sensor_frames and tow_sim_nav's nav. One file serves the node, the ship, the chart, the URDF and
-// the towfish estimator.
+// tow_sim_urdf's sensor_frames, tow_sim_nav's nav and the survey sensors. One file serves the node, the ship,
+// the chart, the URDF and the towfish estimator.
 std::vector<std::string> configurationFileKeys();
 // Refuses a top-level key of `root` outside `known`, naming it under `prefix` ("" or "/node/") with the
 // nearest known key (std::invalid_argument).

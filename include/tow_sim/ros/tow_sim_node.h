@@ -35,6 +35,7 @@
 #include "tow_sim/core/run/live_run.h"
 #include "tow_sim/core/run/tension_limits.h"
 #include "tow_sim/core/run/track_trail.h"
+#include "tow_sim/ros/survey_publisher.h"
 
 namespace tow_sim
 {
@@ -101,6 +102,7 @@ private:
   bool have_last_ = false;   // last_ is of the current run
   uint64_t run_number_ = 0;  // live_'s run the outputs below are of
   std::unique_ptr<TrackTrail> ship_trail_, vehicle_trail_;  // drawn (none when trail_duration is 0)
+  std::unique_ptr<SurveyPublisher> survey_;                 // the survey sensors (none without sensors:)
   ros::Time last_tf_stamp_;
   int64_t tf_origin_ns_ = 0;  // live_'s time origin when last_tf_stamp_ was set
   std::array<double, static_cast<size_t>(LiveNotice::Kind::kCount)> said_wall_{};  // [s] each kind last logged

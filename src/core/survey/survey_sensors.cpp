@@ -1,8 +1,10 @@
 #include "tow_sim/core/survey/survey_sensors.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace tow_sim
 {
@@ -66,16 +68,24 @@ const ParamTable<SurveySensorParams>& surveySensorParams()
           .nest("altimeter", &P::altimeter, channelTable("m"))
           .nest("usbl", &P::usbl, channelTable("m"))
           .number("usbl_range_noise", &P::usbl_range_noise, "-", 0.0, 1.0, kClosed,
-                  "USBL noise per axis per metre of slant range (added to usbl.noise)");
+                  "USBL noise per axis per metre of slant range (added to usbl.noise)")
+          .number("origin_latitude", &P::origin_latitude, "deg", -90.0, 90.0, kClosed,
+                  "tow_sim_node: the world frame's geodetic origin (WGS84) for survey/ship/fix")
+          .number("origin_longitude", &P::origin_longitude, "deg", -180.0, 180.0, kClosed, "tow_sim_node: likewise")
+          .number("origin_altitude", &P::origin_altitude, "m", -1000.0, 10000.0, kClosed,
+                  "tow_sim_node: likewise, above the ellipsoid")
+          .text("ship_frame", &P::ship_frame, "a frame name", "tow_sim_node: the frame of survey/usbl's fixes (FLU)");
   return table;
 }
 
 void validate(const SurveySensorParams& params, const std::string& prefix)
 {
   validateParams(surveySensorParams(), params, prefix);
+  if (params.ship_frame.empty())
+    throw std::invalid_argument(paramName(prefix, "ship_frame") + ": must name a frame");
 }
 
-SurveySensors::SurveySensors(const SurveySensorParams& params) : params_(params)
+SurveySensors::SurveySensors(const SurveySensorParams& params, Output output) : params_(params), output_(output)
 {
   validate(params_, "sensors");
   const SensorChannel* channels[kChannels] = { &params_.gnss,      &params_.heading, &params_.cable_counter,
@@ -170,13 +180,6 @@ double SurveySensors::normal(Stream& s, double sigma)
   return sigma * std::normal_distribution<double>(0.0, 1.0)(s.random);
 }
 
-SurveyMeasurement& SurveySensors::rowAt(double t)
-{
-  SurveyMeasurement& row = pending_[t];
-  row.t = t;
-  return row;
-}
-
 void SurveySensors::sample(int c, const Truth& truth)
 {
   Stream& s = streams_[c];
@@ -186,42 +189,78 @@ void SurveySensors::sample(int c, const Truth& truth)
   const double e1 = normal(s, 1.0), e2 = normal(s, 1.0), e3 = normal(s, 1.0);
   if (lost || (c == kAltimeter && !std::isfinite(truth.altitude)))
     return;
-  SurveyMeasurement& row = rowAt(truth.t + ch.latency);
+  SensorSample out;
+  out.kind = static_cast<SensorKind>(c);
+  out.measured = truth.t;
+  out.arrives = truth.t + ch.latency;
+  SurveyMeasurement& m = out.values;
+  m.t = out.arrives;
   switch (c)
   {
     case kGnss:
-      row.ship_x = truth.ship_x + ch.bias + ch.noise * e1;
-      row.ship_y = truth.ship_y + ch.bias + ch.noise * e2;
-      row.ship_speed = std::max(0.0, truth.ship_speed + params_.gnss_speed_noise * e3);
+      m.ship_x = truth.ship_x + ch.bias + ch.noise * e1;
+      m.ship_y = truth.ship_y + ch.bias + ch.noise * e2;
+      m.ship_speed = std::max(0.0, truth.ship_speed + params_.gnss_speed_noise * e3);
       break;
     case kHeading:
-      row.ship_heading = wrapAngle(truth.ship_heading + ch.bias + ch.noise * e1);
+      m.ship_heading = wrapAngle(truth.ship_heading + ch.bias + ch.noise * e1);
       break;
     case kCableCounter:
-      row.cable_out = truth.cable_out + ch.bias + ch.noise * e1;
+      m.cable_out = truth.cable_out + ch.bias + ch.noise * e1;
       break;
     case kLoadCell:
-      row.tension = truth.tension + ch.bias + ch.noise * e1;
+      m.tension = truth.tension + ch.bias + ch.noise * e1;
       break;
     case kDepth:
-      row.fish_depth = -truth.fish_z + ch.bias + ch.noise * e1;
+      m.fish_depth = -truth.fish_z + ch.bias + ch.noise * e1;
       break;
     case kAhrs:
-      row.fish_heading = wrapAngle(truth.fish_heading + ch.bias + ch.noise * e1);
-      row.fish_pitch = truth.fish_pitch + params_.ahrs_pitch_noise * e2;
+      m.fish_heading = wrapAngle(truth.fish_heading + ch.bias + ch.noise * e1);
+      m.fish_pitch = truth.fish_pitch + params_.ahrs_pitch_noise * e2;
       break;
     case kAltimeter:
-      row.fish_altitude = truth.altitude + ch.bias + ch.noise * e1;
+      m.fish_altitude = truth.altitude + ch.bias + ch.noise * e1;
       break;
     default:  // kUsbl: the transducer at the ship's reference point, the noise growing with the slant range
     {
-      const double range = std::hypot(truth.fish_x - truth.ship_x, truth.fish_y - truth.ship_y, truth.fish_z);
-      const double sigma = ch.noise + params_.usbl_range_noise * range;
-      row.usbl_x = truth.fish_x + ch.bias + sigma * e1;
-      row.usbl_y = truth.fish_y + ch.bias + sigma * e2;
-      row.usbl_z = truth.fish_z + ch.bias + sigma * e3;
+      const Eigen::Vector3d d(truth.fish_x - truth.ship_x, truth.fish_y - truth.ship_y, truth.fish_z);
+      const double sigma = ch.noise + params_.usbl_range_noise * d.norm();
+      m.usbl_x = truth.fish_x + ch.bias + sigma * e1;
+      m.usbl_y = truth.fish_y + ch.bias + sigma * e2;
+      m.usbl_z = truth.fish_z + ch.bias + sigma * e3;
+      const double cos_h = std::cos(truth.ship_heading), sin_h = std::sin(truth.ship_heading);
+      const double dx = m.usbl_x - truth.ship_x, dy = m.usbl_y - truth.ship_y;
+      out.usbl_S = Eigen::Vector3d(cos_h * dx + sin_h * dy, -sin_h * dx + cos_h * dy, m.usbl_z);
     }
   }
+  keep(out);
+}
+
+// A sample into its row (fields already there from another sensor stay) or the samples' queue.
+void SurveySensors::keep(const SensorSample& out)
+{
+  if (output_ == Output::kSamples)
+  {
+    samples_.emplace(out.arrives, out);
+    return;
+  }
+  SurveyMeasurement& row = pending_[out.arrives];
+  row.t = out.arrives;
+  const std::array<double, SurveyMeasurement::kColumns> v = out.values.values();
+  const std::array<double*, SurveyMeasurement::kColumns> f = row.fields();
+  for (int i = 1; i < SurveyMeasurement::kColumns; ++i)
+    if (!std::isnan(v[i]))
+      *f[i] = v[i];
+}
+
+std::vector<SensorSample> SurveySensors::takeSamples(double up_to)
+{
+  std::vector<SensorSample> out;
+  auto end = samples_.upper_bound(up_to + 1e-9);
+  for (auto it = samples_.begin(); it != end; ++it)
+    out.push_back(it->second);
+  samples_.erase(samples_.begin(), end);
+  return out;
 }
 
 std::vector<SurveyMeasurement> SurveySensors::take(double up_to)

@@ -9,6 +9,7 @@
 // keep that well inside the sensors' noise except in the sharpest manoeuvres.
 #pragma once
 
+#include <Eigen/Core>
 #include <map>
 #include <random>
 #include <string>
@@ -47,6 +48,12 @@ struct SurveySensorParams
   SensorChannel altimeter{ true, 1.0, 0.1, 0.0, 0.0, 0.0, 7 };      // [m] (only with a seabed)
   SensorChannel usbl{ true, 0.2, 0.5, 0.0, 1.0, 0.1, 8 };           // [m] floor of the noise per axis
   double usbl_range_noise = 0.005;  // [-] the noise's part proportional to the slant range, per axis
+  // tow_sim_node only: the geodetic origin of the world frame (the GNSS fixes' latitude and longitude) and the
+  // frame of the USBL fixes.
+  double origin_latitude = 0.0;   // [deg] WGS84, north positive
+  double origin_longitude = 0.0;  // [deg] WGS84, east positive
+  double origin_altitude = 0.0;   // [m] above the WGS84 ellipsoid
+  std::string ship_frame = "ship";
 };
 
 const ParamTable<SensorChannel>& sensorChannelParams();
@@ -54,11 +61,38 @@ const ParamTable<SurveySensorParams>& surveySensorParams();  // nests sensorChan
 // Throws std::invalid_argument naming PREFIX.<key> and its range.
 void validate(const SurveySensorParams& params, const std::string& prefix);
 
+enum class SensorKind
+{
+  kGnss,
+  kHeading,
+  kCableCounter,
+  kLoadCell,
+  kDepth,
+  kAhrs,
+  kAltimeter,
+  kUsbl
+};
+
+// One sensor's sample, as a node publishes it: stamped with the instant it measures, sent when it arrives.
+struct SensorSample
+{
+  SensorKind kind = SensorKind::kGnss;
+  double measured = 0.0;                             // [s] the instant it measures
+  double arrives = 0.0;                              // [s] measured + the channel's latency
+  SurveyMeasurement values;                          // this sensor's fields only (values.t = arrives)
+  Eigen::Vector3d usbl_S = Eigen::Vector3d::Zero();  // kUsbl: the fix in the ship frame (FLU) then [m]
+};
+
 class SurveySensors
 {
 public:
+  enum class Output
+  {
+    kRows,    // take(): the rows of measurements.csv
+    kSamples  // takeSamples(): each sensor's samples (tow_sim_node publishes them)
+  };
   // Validates (prefix "sensors").
-  explicit SurveySensors(const SurveySensorParams& params);
+  explicit SurveySensors(const SurveySensorParams& params, Output output = Output::kRows);
   SurveySensors(const SurveySensors&) = delete;  // its streams point into its own parameters
   SurveySensors& operator=(const SurveySensors&) = delete;
 
@@ -68,6 +102,8 @@ public:
   // The rows that have arrived by `up_to` [s] and were not taken yet, in time order; samples due at one instant
   // share a row.
   std::vector<SurveyMeasurement> take(double up_to);
+  // The samples that have arrived by `up_to` [s] and were not taken yet, by arrival time (Output::kSamples).
+  std::vector<SensorSample> takeSamples(double up_to);
 
   // What the sensors see at one instant (world ENU, SI), from a snapshot.
   struct Truth
@@ -91,14 +127,16 @@ private:
   };
   void sampleDue(const Truth& a, const Truth& b);
   void sample(int channel, const Truth& truth);
-  SurveyMeasurement& rowAt(double t);
+  void keep(const SensorSample& sample);
   double normal(Stream& s, double sigma);
 
   SurveySensorParams params_;
   std::vector<Stream> streams_;
   bool started_ = false;
   Truth last_;
-  std::map<double, SurveyMeasurement> pending_;  // by arrival time
+  Output output_;
+  std::map<double, SurveyMeasurement> pending_;  // rows by arrival time
+  std::multimap<double, SensorSample> samples_;  // samples by arrival time
 };
 
 }  // namespace tow_sim
