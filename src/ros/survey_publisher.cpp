@@ -12,22 +12,13 @@
 #include <cmath>
 
 #include "tow_sim/SensorValue.h"
+#include "tow_sim/ros/conversions.h"
 
 namespace tow_sim
 {
 namespace
 {
 constexpr double kAtmosphere = 101325.0;  // [Pa] at the surface
-
-geometry_msgs::Quaternion toQuaternion(const Eigen::Quaterniond& q)
-{
-  geometry_msgs::Quaternion m;
-  m.w = q.w();
-  m.x = q.x();
-  m.y = q.y();
-  m.z = q.z();
-  return m;
-}
 
 tow_sim::SensorValue value(const std_msgs::Header& header, double v, double sigma)
 {
@@ -59,8 +50,8 @@ sensor_msgs::Imu toImu(const std_msgs::Header& header, const SurveyMeasurement& 
 {
   sensor_msgs::Imu imu;
   imu.header = header;
-  imu.orientation = toQuaternion(Eigen::AngleAxisd(m.fish_heading, Eigen::Vector3d::UnitZ()) *
-                                 Eigen::AngleAxisd(m.fish_pitch, Eigen::Vector3d::UnitY()));
+  imu.orientation = ros_conv::toQuaternion(Eigen::AngleAxisd(m.fish_heading, Eigen::Vector3d::UnitZ()) *
+                                           Eigen::AngleAxisd(m.fish_pitch, Eigen::Vector3d::UnitY()));
   const double pitch = std::pow(params.ahrs_pitch_noise, 2), yaw = std::pow(params.ahrs.noise, 2);
   imu.orientation_covariance = { pitch, 0.0, 0.0, 0.0, pitch, 0.0, 0.0, 0.0, yaw };
   imu.angular_velocity_covariance[0] = -1.0;
@@ -134,7 +125,8 @@ void SurveyPublisher::send(const SensorSample& sample, const ros::Time& measured
       geometry_msgs::QuaternionStamped q;
       q.header = header;
       q.header.frame_id = world_frame_;
-      q.quaternion = toQuaternion(Eigen::Quaterniond(Eigen::AngleAxisd(m.ship_heading, Eigen::Vector3d::UnitZ())));
+      q.quaternion =
+          ros_conv::toQuaternion(Eigen::Quaterniond(Eigen::AngleAxisd(m.ship_heading, Eigen::Vector3d::UnitZ())));
       heading_.publish(q);
       break;
     }

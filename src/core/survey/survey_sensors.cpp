@@ -10,18 +10,7 @@ namespace tow_sim
 {
 namespace
 {
-enum Channel
-{
-  kGnss,
-  kHeading,
-  kCableCounter,
-  kLoadCell,
-  kDepth,
-  kAhrs,
-  kAltimeter,
-  kUsbl,
-  kChannels
-};
+constexpr int kChannels = 8;  // SensorKind's, in its order (the streams are indexed by it)
 
 // The channel table with the noise and bias in `unit`: one table per unit, built once.
 const ParamTable<SensorChannel>& channelTable(const std::string& unit)
@@ -187,41 +176,42 @@ void SurveySensors::sample(int c, const Truth& truth)
   // The same draws whether the sample is lost or not, so a dropout changes no other sample.
   const bool lost = std::uniform_real_distribution<double>(0.0, 1.0)(s.random) < ch.dropout;
   const double e1 = normal(s, 1.0), e2 = normal(s, 1.0), e3 = normal(s, 1.0);
-  if (lost || (c == kAltimeter && !std::isfinite(truth.altitude)))
+  const SensorKind kind = static_cast<SensorKind>(c);
+  if (lost || (kind == SensorKind::kAltimeter && !std::isfinite(truth.altitude)))
     return;
   SensorSample out;
-  out.kind = static_cast<SensorKind>(c);
+  out.kind = kind;
   out.measured = truth.t;
   out.arrives = truth.t + ch.latency;
   SurveyMeasurement& m = out.values;
   m.t = out.arrives;
-  switch (c)
+  switch (kind)
   {
-    case kGnss:
+    case SensorKind::kGnss:
       m.ship_x = truth.ship_x + ch.bias + ch.noise * e1;
       m.ship_y = truth.ship_y + ch.bias + ch.noise * e2;
       m.ship_speed = std::max(0.0, truth.ship_speed + params_.gnss_speed_noise * e3);
       break;
-    case kHeading:
+    case SensorKind::kHeading:
       m.ship_heading = wrapAngle(truth.ship_heading + ch.bias + ch.noise * e1);
       break;
-    case kCableCounter:
+    case SensorKind::kCableCounter:
       m.cable_out = truth.cable_out + ch.bias + ch.noise * e1;
       break;
-    case kLoadCell:
+    case SensorKind::kLoadCell:
       m.tension = truth.tension + ch.bias + ch.noise * e1;
       break;
-    case kDepth:
+    case SensorKind::kDepth:
       m.fish_depth = -truth.fish_z + ch.bias + ch.noise * e1;
       break;
-    case kAhrs:
+    case SensorKind::kAhrs:
       m.fish_heading = wrapAngle(truth.fish_heading + ch.bias + ch.noise * e1);
       m.fish_pitch = truth.fish_pitch + params_.ahrs_pitch_noise * e2;
       break;
-    case kAltimeter:
+    case SensorKind::kAltimeter:
       m.fish_altitude = truth.altitude + ch.bias + ch.noise * e1;
       break;
-    default:  // kUsbl: the transducer at the ship's reference point, the noise growing with the slant range
+    case SensorKind::kUsbl:  // the transducer at the ship's reference point, the noise growing with the slant range
     {
       const Eigen::Vector3d d(truth.fish_x - truth.ship_x, truth.fish_y - truth.ship_y, truth.fish_z);
       const double sigma = ch.noise + params_.usbl_range_noise * d.norm();
