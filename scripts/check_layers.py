@@ -17,7 +17,7 @@ import sys
 
 LIBRARIES = ["core", "config", "scenario", "ros"]
 LAYERS = [
-    ["constants", "geometry", "param_table", "survey_measurement", "layback_rules"],
+    ["constants", "geometry", "param_table", "survey_measurement", "layback_rules", "survey_row_queue"],
     ["waves", "params", "param_tables", "numeric_csv", "tension_limits", "measurement_csv"],
     ["fins", "seabed", "element", "ship_response"],
     ["added_mass", "vehicle"],

@@ -177,16 +177,24 @@ ShipMotionParams readShipMotionParams(const YAML::Node& params, const std::strin
   return p;
 }
 
+// The keys of a geodetic origin, for the nodes that take GNSS fixes (S has the four members).
+template <class S>
+ParamTable<S> withGeodeticOrigin(ParamTable<S> table)
+{
+  table
+      .boolean("origin_from_first_fix", &S::origin_from_first_fix,
+               "the first good fix is the ENU origin (else origin_latitude, _longitude, _altitude)")
+      .number("origin_latitude", &S::origin_latitude, "deg", -90.0, 90.0, kClosed, "WGS84, north positive")
+      .number("origin_longitude", &S::origin_longitude, "deg", -180.0, 180.0, kClosed, "WGS84, east positive")
+      .number("origin_altitude", &S::origin_altitude, "m", -1e4, 1e4, kClosed, "above the WGS84 ellipsoid");
+  return table;
+}
+
 const ParamTable<GnssShipParams>& gnssShipParams()
 {
   using G = GnssShipParams;
   static const ParamTable<G> table =
-      ParamTable<G>()
-          .boolean("origin_from_first_fix", &G::origin_from_first_fix,
-                   "the first good fix is the ENU origin (else origin_latitude, _longitude, _altitude)")
-          .number("origin_latitude", &G::origin_latitude, "deg", -90.0, 90.0, kClosed, "WGS84, north positive")
-          .number("origin_longitude", &G::origin_longitude, "deg", -180.0, 180.0, kClosed, "WGS84, east positive")
-          .number("origin_altitude", &G::origin_altitude, "m", -1e4, 1e4, kClosed, "above the WGS84 ellipsoid")
+      withGeodeticOrigin(ParamTable<G>())
           .vector3("antenna", &G::antenna_S, "m", -1000.0, 1000.0, "the GNSS antenna in the ship frame (FLU)")
           .number("smoothing_time", &G::smoothing_time, "s", 0.0, 600.0, kClosed,
                   "time constant of the alpha-beta tracker that smooths the fixes and gives the velocity (0: none)")
@@ -205,6 +213,37 @@ void validate(const GnssShipParams& p, const std::string& prefix)
 {
   validateParams(gnssShipParams(), p, prefix);
   requireDistinctFrames(p.world_frame, p.ship_frame, "ship_frame", prefix);
+}
+
+const ParamTable<TowNavNodeParams>& towNavNodeParams()
+{
+  using N = TowNavNodeParams;
+  static const ParamTable<N> table =
+      withGeodeticOrigin(ParamTable<N>())
+          .choice("heading_convention", &N::heading_convention, { { "enu", "enu" }, { "compass", "compass" } },
+                  "survey/ship/heading's yaw: enu from east toward north (REP-103), compass from north clockwise")
+          .choice("depth_source", &N::depth_source, { { "depth", "depth" }, { "pressure", "pressure" } },
+                  "the fish's depth from survey/fish/depth, or from survey/fish/pressure (absolute)")
+          .number("atmospheric_pressure", &N::atmospheric_pressure, "Pa", 0.0, 2e5, kClosed,
+                  "taken off survey/fish/pressure before dividing by the water's density times g")
+          .number("hold", &N::hold, "s", 0.0, 30.0, kClosed,
+                  "a measurement waits this long for the others of its instant (more than the sensors' transport "
+                  "delay; the estimate is this much behind the clock)")
+          .number("max_ship_gap", &N::max_ship_gap, "s", 0.0, 60.0, kOpen,
+                  "a USBL fix is placed with the ship's fixes and headings within this of its stamp")
+          .number("rate", &N::rate, "Hz", 0.1, 100.0, kClosed, "the estimate's updates and outputs")
+          .text("world_frame", &N::world_frame, "non-empty", "the estimate's frame (ENU about the origin)")
+          .text("ship_frame", &N::ship_frame, "≠ world_frame", "the frame_id survey/usbl's fixes must have")
+          .text("fish_frame", &N::fish_frame, "≠ world_frame", "child frame of the estimate's tf")
+          .boolean("publish_tf", &N::publish_tf, "the tf world_frame -> fish_frame");
+  return table;
+}
+
+void validate(const TowNavNodeParams& p, const std::string& prefix)
+{
+  validateParams(towNavNodeParams(), p, prefix);
+  requireDistinctFrames(p.world_frame, p.ship_frame, "ship_frame", prefix);
+  requireDistinctFrames(p.world_frame, p.fish_frame, "fish_frame", prefix);
 }
 
 const ParamTable<ReplayParams>& replayParams()

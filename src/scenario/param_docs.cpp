@@ -260,6 +260,7 @@ const std::map<std::string, std::function<std::string()>>& tables()
     { "replay_node", [] { return markdown(replayParams(), ReplayParams()); } },
     { "ship_motion_node", [] { return markdown(shipMotionParams(), ShipMotionParams()); } },
     { "gnss_ship_node", [] { return markdown(gnssShipParams(), GnssShipParams()); } },
+    { "tow_nav_node", [] { return markdown(towNavNodeParams(), TowNavNodeParams()); } },
     { "ship", [] { return markdown(shipParams(), Scenario()); } },
     { "manoeuvres", [] { return markdown(manoeuvreParams(), Manoeuvre()); } },
     { "commands", [] { return markdown(commandParams(), CommandEvent()); } },

@@ -104,6 +104,28 @@ struct GnssShipParams
 const ParamTable<GnssShipParams>& gnssShipParams();
 void validate(const GnssShipParams& params, const std::string& prefix);
 
+// tow_nav_node: the towfish's position from a survey vessel's sensor topics with the cable model (tow_nav.h,
+// docs/survey.md). The towing configuration and its `nav:` section are read beside these keys.
+struct TowNavNodeParams
+{
+  bool origin_from_first_fix = true;           // the first good fix is the origin; else the three keys below
+  double origin_latitude = 0.0;                // [deg] WGS84, north positive
+  double origin_longitude = 0.0;               // [deg] WGS84, east positive
+  double origin_altitude = 0.0;                // [m] above the WGS84 ellipsoid
+  std::string heading_convention = "enu";      // enu: yaw from east toward north; compass: from north, clockwise
+  std::string depth_source = "depth";          // depth: survey/fish/depth; pressure: survey/fish/pressure
+  double atmospheric_pressure = 101325.0;      // [Pa] taken off the fish's absolute pressure
+  double hold = 1.5;                           // [s] a measurement waits this long for the others of its instant
+  double max_ship_gap = 2.0;                   // [s] a USBL fix needs a ship fix and heading this near its stamp
+  double rate = 10.0;                          // [Hz] the estimate's updates and outputs
+  std::string world_frame = "odom";            // ENU about the origin: the estimate's frame
+  std::string ship_frame = "ship";             // the USBL fixes' frame
+  std::string fish_frame = "tow_vehicle_nav";  // the estimate's child frame (tf)
+  bool publish_tf = true;                      // the tf world_frame -> fish_frame
+};
+const ParamTable<TowNavNodeParams>& towNavNodeParams();
+void validate(const TowNavNodeParams& params, const std::string& prefix);
+
 // tow_sim_replay: a batch run's shapes replayed into rviz on its own clock.
 struct ReplayParams
 {

@@ -160,7 +160,7 @@ void TowNav::holdMeasurements(SurveyMeasurement row)
   if (std::isfinite(row.cable_out))
     cable_out_ = row.cable_out;
   if (std::isfinite(row.fish_depth))
-    depth_ = row.fish_depth;
+    depth_ = row.fish_depth, depth_t_ = row.t;
   if (!started())
     return;
   if (std::isfinite(row.fish_depth) || std::isfinite(row.tension) || std::isfinite(row.fish_heading))
@@ -345,9 +345,25 @@ TowNavEstimate TowNav::estimateAt(double t) const
   const Eigen::Matrix3Xd a = p.colwise() - e.p_W;
   e.covariance =
       a * a.transpose() / std::max(1, n - 1) + params_.model_sigma * params_.model_sigma * Eigen::Matrix3d::Identity();
+  // The depth is measured (to a decimetre, where the model is metres off in a turn): while the latest is fresh,
+  // it is the estimate's z, with depth_sigma.
+  if (std::isfinite(depth_) && t - depth_t_ <= kFreshDepth)
+  {
+    e.p_W.z() = -depth_;
+    e.covariance.row(2).setZero();
+    e.covariance.col(2).setZero();
+    e.covariance(2, 2) = params_.depth_sigma * params_.depth_sigma;
+  }
+  // Layback and cross-track along the latest measured heading (a gyro's is far better than the smoothed
+  // track's, which lags by metres at the start of a turn), from the tow point on the smoothed track.
   Eigen::Vector3d ship, tow;
   double yaw = 0.0;
   shipAt(t, ship, yaw, tow);
+  if (std::isfinite(heading_))
+  {
+    yaw = heading_;
+    tow = ship + Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix() * params_.tow_point_S;
+  }
   const Eigen::Vector3d d = e.p_W - tow;
   e.layback = -(d.x() * std::cos(yaw) + d.y() * std::sin(yaw));
   e.cross_track = -d.x() * std::sin(yaw) + d.y() * std::cos(yaw);

@@ -9,7 +9,8 @@
 // (perturbed observations); the offsets move only for USBL fixes. The members' runs are not moved: their
 // cables follow their new currents and drags by their own dynamics, so the estimate never jumps, and each
 // member's shape stays a cable's. The estimate is the members' mean fish position plus offset, its
-// covariance their spread plus model_sigma^2 per axis.
+// covariance their spread plus model_sigma^2 per axis; its depth is the latest measured one while it is
+// fresh (at most 10 s old), with depth_sigma.
 //
 // Why an ensemble of runs: the fish's position is a strongly nonlinear, lagged function of the current and the
 // drag (a turn is where the rules fail and the cable's memory matters), the model is cheap (a 500 m cable of 25
@@ -145,9 +146,11 @@ private:
   std::vector<Member> members_;
   double t_ = -1e300, first_fix_ = NAN, last_fix_ = NAN, heading_ = NAN;
   double next_analysis_ = 0.0, last_analysis_ = 0.0, last_knot_ = -1e300, offsets_at_ = 0.0;
-  double cable_out_ = NAN, depth_ = NAN;   // the latest (the baselines')
-  std::vector<SurveyMeasurement> window_;  // rows with a depth, tension or fish heading not yet analysed
-  std::vector<PendingFix> fixes_;          // USBL fixes not yet analysed
+  double cable_out_ = NAN, depth_ = NAN;       // the latest (the baselines'; the depth also the estimate's z)
+  double depth_t_ = NAN;                       // [s] the latest depth's row time
+  static constexpr double kFreshDepth = 10.0;  // [s] a depth this old is still the estimate's z
+  std::vector<SurveyMeasurement> window_;      // rows with a depth, tension or fish heading not yet analysed
+  std::vector<PendingFix> fixes_;              // USBL fixes not yet analysed
   long rows_rejected_ = 0, fixes_rejected_ = 0, usbl_rejected_ = 0, depths_rejected_ = 0;
   std::unique_ptr<Seabed> seabed_;  // the configuration's, if it has one (depths below it are refused)
   bool usbl_seen_ = false;          // a USBL fix has passed the gate: the offsets walk from then on

@@ -1,0 +1,91 @@
+// A survey vessel's sensor messages as the rows tow_nav takes (docs/survey.md, "tow_nav_node"): the messages
+// tow_sim_node's survey/ topics carry, from a live system or a bag. Each message becomes a sample at its
+// header.stamp (the instant it measures) in a SurveyRowQueue; a USBL fix (the fish in the ship frame) is put
+// into the world frame with the ship's fixes and headings around its stamp, and its row is placed
+// usbl_latency after the stamp, where tow_nav looks for it (tow_nav.h). Times in the rows are seconds after an
+// epoch: the first message's stamp, whole seconds.
+#pragma once
+
+#include <geometry_msgs/PointStamped.h>
+#include <geometry_msgs/QuaternionStamped.h>
+#include <ros/time.h>
+#include <sensor_msgs/FluidPressure.h>
+#include <sensor_msgs/Imu.h>
+#include <sensor_msgs/NavSatFix.h>
+
+#include <Eigen/Core>
+#include <deque>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tow_sim/SensorValue.h"
+#include "tow_sim/core/survey/survey_row_queue.h"
+
+namespace GeographicLib
+{
+class LocalCartesian;
+}
+
+namespace tow_sim
+{
+struct SurveyRowSettings
+{
+  bool origin_from_first_fix = true;                                            // else the three below
+  double origin_latitude = 0.0, origin_longitude = 0.0, origin_altitude = 0.0;  // [deg], [deg], [m] WGS84
+  std::string heading_convention = "enu";  // enu: yaw from east toward north; compass: from north, clockwise
+  std::string ship_frame = "ship";         // the USBL fixes' frame_id
+  std::string depth_source = "depth";      // depth: survey/fish/depth; pressure: from survey/fish/pressure
+  double atmospheric_pressure = 101325.0;  // [Pa] subtracted from the fish's absolute pressure
+  double rho_g = 1025.0 * 9.81;            // [Pa/m]
+  double hold = 1.5;                       // [s] a row waits this long for the samples of its instant
+  double usbl_latency = 1.0;               // [s] tow_nav's: a USBL row is placed this long after its stamp
+  double max_ship_gap = 2.0;               // [s] a USBL fix needs a ship fix and a heading this near its stamp
+};
+
+class SurveyRows
+{
+public:
+  explicit SurveyRows(const SurveyRowSettings& settings);
+  ~SurveyRows();
+
+  // Each takes one message and returns "" or why it was refused, naming the message's field and the allowed
+  // range (the refusal is counted in refused()).
+  std::string fix(const sensor_msgs::NavSatFix& msg);
+  std::string heading(const geometry_msgs::QuaternionStamped& msg);
+  std::string cableOut(const tow_sim::SensorValue& msg);
+  std::string tension(const tow_sim::SensorValue& msg);
+  std::string depth(const tow_sim::SensorValue& msg);
+  std::string pressure(const sensor_msgs::FluidPressure& msg);
+  std::string imu(const sensor_msgs::Imu& msg);
+  std::string usbl(const geometry_msgs::PointStamped& msg);
+
+  // The rows held for `hold` by now, in time order; every row held (the end of a bag).
+  std::vector<SurveyMeasurement> release(const ros::Time& now);
+  std::vector<SurveyMeasurement> releaseAll() { return queue_.releaseAll(); }
+
+  // Rows' times and ROS stamps (false/zero before the first message).
+  bool hasEpoch() const { return !epoch_.isZero(); }
+  ros::Time stampOf(double t) const { return epoch_ + ros::Duration(t); }
+  // The world's geodetic origin (null until the first good fix or the configured one).
+  const GeographicLib::LocalCartesian* origin() const { return origin_.get(); }
+  long refused() const { return refused_; }
+  long late() const { return queue_.late(); }
+
+private:
+  double timeOf(const ros::Time& stamp);
+  std::string sample(const ros::Time& stamp, double value, const char* field, double low, double high, const char* unit,
+                     double SurveyMeasurement::*member);
+  static void remember(std::deque<Eigen::Vector3d>& history, const Eigen::Vector3d& entry);
+  std::string refuse(const std::string& why);
+  bool shipAt(double t, Eigen::Vector2d& p, double& yaw) const;
+
+  SurveyRowSettings settings_;
+  SurveyRowQueue queue_;
+  std::unique_ptr<GeographicLib::LocalCartesian> origin_;
+  ros::Time epoch_;
+  std::deque<Eigen::Vector3d> fixes_, headings_;  // (t, x, y) and (t, yaw, 0) of the last minute, for the USBL
+  long refused_ = 0;
+};
+
+}  // namespace tow_sim
