@@ -1,11 +1,15 @@
 // tow_sim_nav: where the towfish was, reprocessed offline from a survey's measurements with the cable model
 // (tow_nav.h, docs/survey.md), beside the layback rules survey software uses, without roscore.
 //   tow_sim_nav --config FILE.yaml --measurements IN.csv --out DIR
+//   tow_sim_nav --config FILE.yaml --bag SURVEY.bag [--topics PREFIX] [--nav-config NODE.yaml] --out DIR
 // IN.csv: measurements.csv's columns (survey_measurement.h; tow_sim_batch writes one for a scenario with
 // sensors). Writes DIR/estimate.csv (t,x,y,z,sigma_x,sigma_y,sigma_z,layback,cross_track; a row per input row,
 // empty cells until the model has started) and DIR/baselines.csv (t,pythagoras_x,pythagoras_y,track_x,track_y,
 // catenary_x,catenary_y; empty cells until a ship fix, a cable out and a depth have come). The configuration's
-// `nav:` section and `tow_point` set the estimator. Exit codes: 0 done; 2 bad arguments, configuration or
+// `nav:` section and `tow_point` set the estimator. A bag (catkin build only) holds the survey/ topics
+// tow_nav_node subscribes, under PREFIX (default /); NODE.yaml has tow_nav_node's keys (its origin, heading
+// convention, depth source; config/tow_nav.yaml), and the rows' t are seconds after the bag's first stamp
+// (whole seconds, printed). Exit codes: 0 done; 2 bad arguments, configuration or
 // measurements; 4 cannot write DIR.
 #include <yaml-cpp/yaml.h>
 #include <chrono>
@@ -13,6 +17,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <system_error>
@@ -20,6 +25,9 @@
 #include "tow_sim/config/config.h"
 #include "tow_sim/config/nav_params.h"
 #include "tow_sim/core/io/measurement_csv.h"
+#ifdef TOW_SIM_NAV_BAG
+#include "tow_sim/ros/survey_bag.h"
+#endif
 
 namespace
 {
@@ -27,9 +35,36 @@ using namespace tow_sim;
 
 int usage(const std::string& why)
 {
-  std::fprintf(stderr, "tow_sim_nav: %s\nusage: tow_sim_nav --config FILE.yaml --measurements IN.csv --out DIR\n",
+  std::fprintf(stderr,
+               "tow_sim_nav: %s\nusage: tow_sim_nav --config FILE.yaml --measurements IN.csv --out DIR\n"
+               "       tow_sim_nav --config FILE.yaml --bag SURVEY.bag [--topics PREFIX] [--nav-config NODE.yaml] "
+               "--out DIR\n",
                why.c_str());
   return 2;
+}
+
+struct Args
+{
+  std::string config, measurements, bag, topics = "/", nav_config, out;
+};
+
+// The rows from the CSV or the bag; throws std::exception with the reason.
+std::vector<SurveyMeasurement> readRows(const Args& a, const SimulationConfig& config, const TowNavParams& params)
+{
+  if (!a.measurements.empty())
+    return readSurveyMeasurements(a.measurements);
+#ifdef TOW_SIM_NAV_BAG
+  const TowNavNodeParams node =
+      a.nav_config.empty() ? TowNavNodeParams() : readTowNavNodeParams(YAML::LoadFile(a.nav_config), a.nav_config);
+  const SurveyBag bag = readSurveyBag(a.bag, a.topics, surveyRowSettings(node, params, config));
+  std::printf("tow_sim_nav: %s: %ld survey messages, %ld refused%s%s; t = 0 at %.0f s (ROS time)\n", a.bag.c_str(),
+              bag.messages, bag.refused, bag.refused ? ", the first: " : "", bag.first_refusal.c_str(),
+              bag.epoch.toSec());
+  return bag.rows;
+#else
+  (void)config, (void)params;
+  throw std::invalid_argument("--bag needs tow_sim_nav from the catkin build (this one is the core-only build)");
+#endif
 }
 
 // The cells of a row, numbers to 10 significant digits; an empty cell for NaN.
@@ -70,16 +105,17 @@ std::string baselineRow(double t, const std::optional<LaybackFixes>& f)
       { t, f->pythagoras.x(), f->pythagoras.y(), f->track.x(), f->track.y(), f->catenary.x(), f->catenary.y() });
 }
 
-int run(const std::string& config_path, const std::string& measurements_path, const std::string& out_dir)
+int run(const Args& args)
 {
+  const std::string& out_dir = args.out;
   SimulationConfig config;
   TowNavParams params;
   std::vector<SurveyMeasurement> rows;
   try
   {
-    config = loadConfigFile(config_path);
-    params = loadNavParams(YAML::LoadFile(config_path));
-    rows = readSurveyMeasurements(measurements_path);
+    config = loadConfigFile(args.config);
+    params = loadNavParams(YAML::LoadFile(args.config));
+    rows = readRows(args, config, params);
   }
   catch (const std::exception& e)
   {
@@ -125,26 +161,26 @@ int run(const std::string& config_path, const std::string& measurements_path, co
 
 int main(int argc, char** argv)
 {
-  std::string config, measurements, out;
+  Args a;
+  const std::map<std::string, std::string*> options = {
+    { "--config", &a.config }, { "--measurements", &a.measurements }, { "--bag", &a.bag },
+    { "--topics", &a.topics }, { "--nav-config", &a.nav_config },     { "--out", &a.out }
+  };
   for (int i = 1; i < argc; ++i)
   {
     const std::string arg = argv[i];
+    auto option = options.find(arg);
+    if (option == options.end())
+      return usage("unknown argument '" + arg + "'");
     if (i + 1 >= argc)
       return usage(arg + " needs a value");
-    if (arg == "--config")
-      config = argv[++i];
-    else if (arg == "--measurements")
-      measurements = argv[++i];
-    else if (arg == "--out")
-      out = argv[++i];
-    else
-      return usage("unknown argument '" + arg + "'");
+    *option->second = argv[++i];
   }
-  if (config.empty() || measurements.empty() || out.empty())
-    return usage("--config, --measurements and --out are required");
+  if (a.config.empty() || a.out.empty() || a.measurements.empty() == a.bag.empty())
+    return usage("--config, --out and one of --measurements and --bag are required");
   try
   {
-    return run(config, measurements, out);
+    return run(a);
   }
   catch (const std::exception& e)  // a run that cannot go on (the configuration's own checks)
   {

@@ -246,6 +246,16 @@ void validate(const TowNavNodeParams& p, const std::string& prefix)
   requireDistinctFrames(p.world_frame, p.fish_frame, "fish_frame", prefix);
 }
 
+TowNavNodeParams readTowNavNodeParams(const YAML::Node& params, const std::string& name)
+{
+  TowNavNodeParams p;
+  detail::ParamReader reader(detail::Section(params, name));
+  reader.read(towNavNodeParams(), p);
+  reader.finish();
+  validate(p, name + ".");
+  return p;
+}
+
 const ParamTable<ReplayParams>& replayParams()
 {
   using R = ReplayParams;

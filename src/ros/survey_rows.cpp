@@ -56,6 +56,24 @@ bool within(double v, double low, double high)
 }
 }  // namespace
 
+SurveyRowSettings surveyRowSettings(const TowNavNodeParams& p, const TowNavParams& nav, const SimulationConfig& config)
+{
+  SurveyRowSettings s;
+  s.origin_from_first_fix = p.origin_from_first_fix;
+  s.origin_latitude = p.origin_latitude;
+  s.origin_longitude = p.origin_longitude;
+  s.origin_altitude = p.origin_altitude;
+  s.heading_convention = p.heading_convention;
+  s.ship_frame = p.ship_frame;
+  s.depth_source = p.depth_source;
+  s.atmospheric_pressure = p.atmospheric_pressure;
+  s.rho_g = config.environment.water_density * config.environment.gravity;
+  s.hold = p.hold;
+  s.usbl_latency = nav.usbl_latency;
+  s.max_ship_gap = p.max_ship_gap;
+  return s;
+}
+
 SurveyRows::SurveyRows(const SurveyRowSettings& settings) : settings_(settings), queue_(settings.hold)
 {
   if (!settings_.origin_from_first_fix)

@@ -47,24 +47,6 @@ TowNavParams readNavParams(const ros::NodeHandle& pnh)
   }
 }
 
-SurveyRowSettings rowSettings(const TowNavNodeParams& p, const TowNavParams& nav, const SimulationConfig& config)
-{
-  SurveyRowSettings s;
-  s.origin_from_first_fix = p.origin_from_first_fix;
-  s.origin_latitude = p.origin_latitude;
-  s.origin_longitude = p.origin_longitude;
-  s.origin_altitude = p.origin_altitude;
-  s.heading_convention = p.heading_convention;
-  s.ship_frame = p.ship_frame;
-  s.depth_source = p.depth_source;
-  s.atmospheric_pressure = p.atmospheric_pressure;
-  s.rho_g = config.environment.water_density * config.environment.gravity;
-  s.hold = p.hold;
-  s.usbl_latency = nav.usbl_latency;
-  s.max_ship_gap = p.max_ship_gap;
-  return s;
-}
-
 double threadCpu()  // [s]
 {
   timespec ts{};
@@ -79,7 +61,7 @@ TowNavNode::TowNavNode(ros::NodeHandle nh, ros::NodeHandle pnh, const Simulation
     : nh_(nh),
       params_(readParams(pnh)),
       nav_params_(readNavParams(pnh)),
-      rows_(rowSettings(params_, nav_params_, config)),
+      rows_(surveyRowSettings(params_, nav_params_, config)),
       nav_(std::make_unique<TowNav>(config, nav_params_))
 {
   pose_pub_ = nh_.advertise<geometry_msgs::PoseWithCovarianceStamped>("nav/fish/pose", 10);

@@ -125,6 +125,8 @@ struct TowNavNodeParams
 };
 const ParamTable<TowNavNodeParams>& towNavNodeParams();
 void validate(const TowNavNodeParams& params, const std::string& prefix);
+// From a YAML file's mapping (tow_sim_nav --nav-config): unknown keys refused; errors name `name`.key.
+TowNavNodeParams readTowNavNodeParams(const YAML::Node& params, const std::string& name);
 
 // tow_sim_replay: a batch run's shapes replayed into rviz on its own clock.
 struct ReplayParams

@@ -20,7 +20,10 @@
 #include <vector>
 
 #include "tow_sim/SensorValue.h"
+#include "tow_sim/config/config.h"
+#include "tow_sim/config/node_params.h"
 #include "tow_sim/core/survey/survey_row_queue.h"
+#include "tow_sim/core/survey/tow_nav.h"
 
 namespace GeographicLib
 {
@@ -42,6 +45,10 @@ struct SurveyRowSettings
   double usbl_latency = 1.0;               // [s] tow_nav's: a USBL row is placed this long after its stamp
   double max_ship_gap = 2.0;               // [s] a USBL fix needs a ship fix and a heading this near its stamp
 };
+
+// tow_nav_node's settings: its keys, the estimator's usbl_latency, the water's density and gravity.
+SurveyRowSettings surveyRowSettings(const TowNavNodeParams& node, const TowNavParams& nav,
+                                    const SimulationConfig& config);
 
 class SurveyRows
 {
