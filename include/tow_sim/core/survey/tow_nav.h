@@ -51,7 +51,7 @@ struct TowNavParams
   double offset_walk = 0.5;         // [m/sqrt(s)] the USBL offset's random walk (zero at first; walks once a fix came)
   double depth_sigma = 0.5;         // [m] the depth's error against the model, sensor and model together
   double tension_sigma = 0.05;      // [-] the tension's, relative
-  double heading_sigma = 0.05;      // [rad] the fish heading's
+  double heading_sigma = 0.03;      // [rad] the fish heading's (its 20 s mean: the model's error, not the AHRS's)
   double usbl_sigma = 1.0;          // [m] a USBL fix's, per axis, plus usbl_range_sigma x slant range
   double usbl_range_sigma = 0.01;   // [-]
   double usbl_latency = 1.0;        // [s] a fix is of the fish this long before its row
