@@ -129,7 +129,7 @@ bench: build
 # The towfish estimator against the layback rules on a lawn-mower survey (docs/survey.md): about 2 minutes.
 survey-bench: build
 	/usr/bin/python3 $(REPO)/scripts/survey_benchmark.py $(WS)/devel/lib/tow_sim $(WS)/survey_bench \
-	  --plot $(REPO)/docs/plots/survey_benchmark.png --doc $(REPO)/docs/survey.md
+	  --plot $(REPO)/docs/plots/survey_benchmark.png --doc $(REPO)/docs/survey.md --doc $(REPO)/README.md
 
 clean:
 	rm -rf $(WS)

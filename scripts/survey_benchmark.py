@@ -81,9 +81,10 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("bin_dir")
     parser.add_argument("out_dir")
-    parser.add_argument("--seeds", type=int, default=3)
+    parser.add_argument("--seeds", type=int, default=6)
     parser.add_argument("--plot")
-    parser.add_argument("--doc", help="a markdown file whose survey-bench block gets the table")
+    parser.add_argument("--doc", action="append", default=[],
+                        help="a markdown file whose survey-bench block gets the table (may be given again)")
     parser.add_argument("--nav-config", default=os.path.join(REPO, "bench/survey/nav.yaml"),
                         help="the estimator's configuration (default bench/survey/nav.yaml)")
     parser.add_argument("--reuse", action="store_true", help="keep the runs already in OUT_DIR (table and plot only)")
@@ -114,8 +115,8 @@ def main():
     lines = ~turns & (t > 300.0)
     table = markdown_table(results, list(measurements), args.seeds, lines, turns)
     print(table)
-    if args.doc:
-        write_doc(args.doc, table)
+    for doc in args.doc:
+        write_doc(doc, table)
     if args.plot:
         plot(args.plot, truth, results, t, turns)
 
