@@ -57,9 +57,9 @@ std::vector<SurveyMeasurement> readRows(const Args& a, const SimulationConfig& c
   const TowNavNodeParams node =
       a.nav_config.empty() ? TowNavNodeParams() : readTowNavNodeParams(YAML::LoadFile(a.nav_config), a.nav_config);
   const SurveyBag bag = readSurveyBag(a.bag, a.topics, surveyRowSettings(node, params, config));
-  std::printf("tow_sim_nav: %s: %ld survey messages, %ld refused%s%s; t = 0 at %.0f s (ROS time)\n", a.bag.c_str(),
-              bag.messages, bag.refused, bag.refused ? ", the first: " : "", bag.first_refusal.c_str(),
-              bag.epoch.toSec());
+  std::printf("tow_sim_nav: %s: %ld survey messages, %ld refused%s%s, %ld late; t = 0 at %.0f s (ROS time)\n",
+              a.bag.c_str(), bag.messages, bag.refused,
+              bag.first_refusal.empty() ? "" : ", the first: ", bag.first_refusal.c_str(), bag.late, bag.epoch.toSec());
   return bag.rows;
 #else
   (void)config, (void)params;

@@ -229,8 +229,10 @@ const ParamTable<TowNavNodeParams>& towNavNodeParams()
           .number("hold", &N::hold, "s", 0.0, 30.0, kClosed,
                   "a measurement waits this long for the others of its instant (more than the sensors' transport "
                   "delay; the estimate is this much behind the clock)")
-          .number("max_ship_gap", &N::max_ship_gap, "s", 0.0, 60.0, kOpen,
-                  "a USBL fix is placed with the ship's fixes and headings within this of its stamp")
+          .number(
+              "max_ship_gap", &N::max_ship_gap, "s", 0.0, 60.0, kOpen,
+              "a USBL fix is placed between the ship's fixes (and headings) on both sides of its stamp, at most twice "
+              "this apart; without them it is refused")
           .number("rate", &N::rate, "Hz", 0.1, 100.0, kClosed, "the estimate's updates and outputs")
           .text("world_frame", &N::world_frame, "non-empty", "the estimate's frame (ENU about the origin)")
           .text("ship_frame", &N::ship_frame, "≠ world_frame", "the frame_id survey/usbl's fixes must have")

@@ -79,17 +79,26 @@ SurveyBag readSurveyBag(const std::string& path, const std::string& prefix, cons
                              ", ...); it has: " + (list.empty() ? "no topics" : list) +
                              " (--topics sets their prefix)");
   }
+  // As tow_nav_node takes them live: each message when it was recorded, and the rows held `hold` by then.
   SurveyRows rows(settings);
   SurveyBag out;
+  long wrong_type = 0;
   for (const rosbag::MessageInstance& m : view)
   {
     ++out.messages;
+    const long before = rows.refused();
     const std::string why = take(rows, m);
+    if (!why.empty() && rows.refused() == before)
+      ++wrong_type;  // refused here, not by SurveyRows
     if (!why.empty() && out.first_refusal.empty())
       out.first_refusal = m.getTopic() + ": " + why;
+    for (const SurveyMeasurement& row : rows.release(m.getTime()))
+      out.rows.push_back(row);
   }
-  out.refused = rows.refused();
-  out.rows = rows.releaseAll();
+  for (const SurveyMeasurement& row : rows.releaseAll())
+    out.rows.push_back(row);
+  out.refused = rows.refused() + wrong_type;
+  out.late = rows.late();
   out.epoch = rows.stampOf(0.0);
   return out;
 }

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -22,18 +23,21 @@ double lerpAngle(double a, double b, double w)
   return wrapAngle(a + w * std::remainder(b - a, 2.0 * M_PI));
 }
 
-// The value at t from a time-ordered history, linear between the two around t, or the nearest within `gap`.
+// The value at t from a time-ordered history, linear between the samples around it; false unless there is a
+// sample at or after t and one at or before it, at most 2 gap apart (no extrapolation: a USBL fix waits for the
+// ship fix after it).
 bool interpolate(const std::deque<Eigen::Vector3d>& h, double t, double gap, bool angle, Eigen::Vector2d& out)
 {
-  if (h.empty())
-    return false;
   auto after = std::lower_bound(h.begin(), h.end(), t, [](const Eigen::Vector3d& s, double v) { return s[0] < v; });
-  if (after == h.begin() || after == h.end())
+  if (after == h.end())
+    return false;
+  if ((*after)[0] == t)
   {
-    const Eigen::Vector3d& nearest = after == h.end() ? h.back() : h.front();
-    out = nearest.tail<2>();
-    return std::abs(nearest[0] - t) <= gap;
+    out = after->tail<2>();
+    return true;
   }
+  if (after == h.begin())
+    return false;
   const Eigen::Vector3d& a = *std::prev(after);
   const Eigen::Vector3d& b = *after;
   if (b[0] - a[0] > 2.0 * gap)
@@ -68,6 +72,10 @@ SurveyRowSettings surveyRowSettings(const TowNavNodeParams& p, const TowNavParam
   s.depth_source = p.depth_source;
   s.atmospheric_pressure = p.atmospheric_pressure;
   s.rho_g = config.environment.water_density * config.environment.gravity;
+  if (p.depth_source == "pressure" && !(s.rho_g > 0.0))
+    throw std::invalid_argument(
+        "depth_source = pressure needs environment.water_density and environment.gravity "
+        "above 0 (a depth is (p - atmospheric_pressure) / (rho g))");
   s.hold = p.hold;
   s.usbl_latency = nav.usbl_latency;
   s.max_ship_gap = p.max_ship_gap;
@@ -85,9 +93,11 @@ SurveyRows::~SurveyRows() = default;
 
 double SurveyRows::timeOf(const ros::Time& stamp)
 {
-  if (epoch_.isZero())
-    epoch_ = ros::Time(std::floor(stamp.toSec()));
-  return (stamp - epoch_).toSec();
+  if (!has_epoch_)
+    epoch_ = ros::Time(std::floor(stamp.toSec())), has_epoch_ = true;
+  const double t = (stamp - epoch_).toSec();
+  newest_ = std::max(newest_, t);
+  return t;
 }
 
 std::string SurveyRows::refuse(const std::string& why)
@@ -193,6 +203,10 @@ std::string SurveyRows::imu(const sensor_msgs::Imu& msg)
   if (msg.header.stamp.isZero())
     return refuse("header.stamp is zero: an attitude needs the instant it measures");
   queue_.add(timeOf(msg.header.stamp), [&](SurveyMeasurement& m) { m.fish_heading = yaw, m.fish_pitch = pitch; });
+  // Its variances, where it gives them (sensor_msgs/Imu: zeros are "unknown").
+  const double pitch_var = msg.orientation_covariance[4], yaw_var = msg.orientation_covariance[8];
+  attitude_variance_ = Eigen::Vector2d(std::isfinite(pitch_var) && pitch_var > 0.0 ? pitch_var : NAN,
+                                       std::isfinite(yaw_var) && yaw_var > 0.0 ? yaw_var : NAN);
   return "";
 }
 
@@ -206,34 +220,69 @@ bool SurveyRows::shipAt(double t, Eigen::Vector2d& p, double& yaw) const
   return true;
 }
 
-// The fish in the ship frame (FLU, about the GNSS's reference point, level) into the world frame with the
-// ship's pose at the fix's stamp; z stays (the ship's reference point is at the surface).
+// A USBL fix waits until its row is due (then the ship's fixes and headings on both sides of its stamp have
+// come) and is put into the world frame there: placeUsbl.
 std::string SurveyRows::usbl(const geometry_msgs::PointStamped& msg)
 {
-  const Eigen::Vector3d p_S(msg.point.x, msg.point.y, msg.point.z);
-  if (!(p_S.allFinite() && p_S.cwiseAbs().maxCoeff() <= 1e5))
-    return refuse(outOfRange("point (largest |x|, |y|, |z|)", p_S.cwiseAbs().maxCoeff(), 0.0, 1e5, "m"));
+  const double xyz[3] = { msg.point.x, msg.point.y, msg.point.z };
+  for (int a = 0; a < 3; ++a)
+    if (!within(xyz[a], -1e5, 1e5))
+      return refuse(outOfRange(a == 0 ? "point.x" : a == 1 ? "point.y" : "point.z", xyz[a], -1e5, 1e5, "m"));
   if (msg.header.frame_id != settings_.ship_frame)
     return refuse("header.frame_id = '" + msg.header.frame_id + "': a USBL fix must be in the ship frame '" +
                   settings_.ship_frame + "'");
   if (msg.header.stamp.isZero())
     return refuse("header.stamp is zero: a USBL fix needs the instant it measures");
-  const double t = timeOf(msg.header.stamp);
-  Eigen::Vector2d ship;
-  double yaw = 0.0;
-  if (!shipAt(t, ship, yaw))
-    return refuse("header.stamp: no ship fix and heading within max_ship_gap of it to place the fix");
-  const Eigen::Vector2d p_W = ship + Eigen::Rotation2Dd(yaw) * p_S.head<2>();
-  queue_.add(t + settings_.usbl_latency,
-             [&](SurveyMeasurement& m) { m.usbl_x = p_W.x(), m.usbl_y = p_W.y(), m.usbl_z = p_S.z(); });
+  usbl_.push_back(PendingUsbl{ timeOf(msg.header.stamp), Eigen::Vector3d(xyz[0], xyz[1], xyz[2]) });
   return "";
+}
+
+// The fixes whose rows are due by `cutoff` (a row time) into the world frame with the ship's pose at their
+// stamps: the fish in the ship frame (FLU, about the GNSS's reference point, level), rotated by the heading and
+// put at the ship's fix; z stays (the reference point is at the surface). A fix without ship fixes and headings
+// around its stamp is refused and counted in unplaced().
+void SurveyRows::placeUsbl(double cutoff)
+{
+  std::vector<PendingUsbl> waiting;
+  for (const PendingUsbl& f : usbl_)
+  {
+    if (f.t + settings_.usbl_latency > cutoff)
+    {
+      waiting.push_back(f);
+      continue;
+    }
+    Eigen::Vector2d ship;
+    double yaw = 0.0;
+    if (!shipAt(f.t, ship, yaw))
+    {
+      ++refused_, ++unplaced_;
+      continue;
+    }
+    const Eigen::Vector2d p_W = ship + Eigen::Rotation2Dd(yaw) * f.p_S.head<2>();
+    queue_.add(f.t + settings_.usbl_latency,
+               [&](SurveyMeasurement& m) { m.usbl_x = p_W.x(), m.usbl_y = p_W.y(), m.usbl_z = f.p_S.z(); });
+  }
+  usbl_.swap(waiting);
 }
 
 std::vector<SurveyMeasurement> SurveyRows::release(const ros::Time& now)
 {
-  if (epoch_.isZero())
+  if (!has_epoch_)
     return {};
-  return queue_.release((now - epoch_).toSec());
+  const double t = (now - epoch_).toSec();
+  placeUsbl(t - settings_.hold);
+  return queue_.release(t);
+}
+
+std::vector<SurveyMeasurement> SurveyRows::releaseAll()
+{
+  placeUsbl(std::numeric_limits<double>::infinity());
+  return queue_.releaseAll();
+}
+
+double SurveyRows::ahead(const ros::Time& now) const
+{
+  return has_epoch_ ? newest_ - (now - epoch_).toSec() : 0.0;
 }
 
 }  // namespace tow_sim

@@ -15,7 +15,8 @@ namespace tow_sim
 {
 namespace
 {
-constexpr double kUnknownVariance = 1e6;  // [rad^2] an orientation the node does not know (no AHRS yet)
+constexpr double kUnknownVariance = 1e6;  // [rad^2] an angle the node does not know (roll; no AHRS yet)
+constexpr double kFreshAttitude = 5.0;    // [s] an AHRS attitude this old is still the pose's
 
 TowNavNodeParams readParams(const ros::NodeHandle& pnh)
 {
@@ -47,6 +48,33 @@ TowNavParams readNavParams(const ros::NodeHandle& pnh)
   }
 }
 
+// The estimate in WGS84: latitude and longitude of its point on the origin's tangent plane; the altitude is the
+// origin's (the sea surface's ellipsoidal height when it is configured so) plus the estimate's z. ENU covariance.
+sensor_msgs::NavSatFix fishFix(const std_msgs::Header& header, const std::string& frame,
+                               const GeographicLib::LocalCartesian& origin, const TowNavEstimate& e)
+{
+  sensor_msgs::NavSatFix fix;
+  fix.header = header;
+  fix.header.frame_id = frame;
+  fix.status.status = sensor_msgs::NavSatStatus::STATUS_FIX;
+  double h = 0.0;
+  origin.Reverse(e.p_W.x(), e.p_W.y(), 0.0, fix.latitude, fix.longitude, h);
+  fix.altitude = origin.HeightOrigin() + e.p_W.z();
+  for (int i = 0; i < 9; ++i)
+    fix.position_covariance[i] = e.covariance(i / 3, i % 3);
+  fix.position_covariance_type = sensor_msgs::NavSatFix::COVARIANCE_TYPE_KNOWN;
+  return fix;
+}
+
+tow_sim::SensorValue sensorValue(const std_msgs::Header& header, double value, double variance)
+{
+  tow_sim::SensorValue m;
+  m.header = header;
+  m.value = value;
+  m.variance = variance;
+  return m;
+}
+
 double threadCpu()  // [s]
 {
   timespec ts{};
@@ -61,7 +89,8 @@ TowNavNode::TowNavNode(ros::NodeHandle nh, ros::NodeHandle pnh, const Simulation
     : nh_(nh),
       params_(readParams(pnh)),
       nav_params_(readNavParams(pnh)),
-      rows_(surveyRowSettings(params_, nav_params_, config)),
+      config_(config),
+      rows_(std::make_unique<SurveyRows>(surveyRowSettings(params_, nav_params_, config))),
       nav_(std::make_unique<TowNav>(config, nav_params_))
 {
   pose_pub_ = nh_.advertise<geometry_msgs::PoseWithCovarianceStamped>("nav/fish/pose", 10);
@@ -95,21 +124,49 @@ ros::Subscriber TowNavNode::subscribe(const std::string& topic, std::string (Sur
   return nh_.subscribe<M>(topic, 50,
                           [this, topic, take](const typename M::ConstPtr& msg)
                           {
-                            const std::string why = (rows_.*take)(*msg);
+                            const std::string why = ((*rows_).*take)(*msg);
                             if (!why.empty())
-                              ROS_WARN_THROTTLE(2.0, "tow_nav: refused a message on %s: %s (the estimate carries on)",
-                                                nh_.resolveName(topic).c_str(), why.c_str());
+                              warnRefused(topic, why);
                           });
+}
+
+// At most one warning every 2 s per topic (a stream of bad messages on one hides none on another).
+void TowNavNode::warnRefused(const std::string& topic, const std::string& why)
+{
+  const ros::WallTime now = ros::WallTime::now();
+  auto last = warned_.find(topic);
+  if (last != warned_.end() && (now - last->second).toSec() < 2.0)
+    return;
+  warned_[topic] = now;
+  ROS_WARN("tow_nav: refused a message on %s: %s (the estimate carries on)", nh_.resolveName(topic).c_str(),
+           why.c_str());
+}
+
+// The clock went back (a simulation reset, a bag played again): the measurements start again, and so does the
+// estimate.
+void TowNavNode::restart(const ros::Time& now)
+{
+  ROS_WARN("tow_nav: the clock went back from %.3f to %.3f s: the estimate starts again", last_now_.toSec(),
+           now.toSec());
+  rows_ = std::make_unique<SurveyRows>(surveyRowSettings(params_, nav_params_, config_));
+  nav_ = std::make_unique<TowNav>(config_, nav_params_);
+  last_ = TowNavEstimate();
+  fish_yaw_ = fish_pitch_ = fish_t_ = NAN;
+  ++restarts_;
 }
 
 void TowNavNode::tick(const ros::TimerEvent&)
 {
   const double cpu = threadCpu();
+  const ros::Time now = ros::Time::now();
+  if (!last_now_.isZero() && now + ros::Duration(1.0) < last_now_)
+    restart(now);
+  last_now_ = now;
   bool moved = false;
-  for (const SurveyMeasurement& row : rows_.release(ros::Time::now()))
+  for (const SurveyMeasurement& row : rows_->release(now))
   {
     if (std::isfinite(row.fish_heading))
-      fish_yaw_ = row.fish_heading, fish_pitch_ = row.fish_pitch;
+      fish_yaw_ = row.fish_heading, fish_pitch_ = row.fish_pitch, fish_t_ = row.t;
     last_ = nav_->update(row);
     ++rows_taken_;
     moved = true;
@@ -123,46 +180,34 @@ void TowNavNode::tick(const ros::TimerEvent&)
 void TowNavNode::publish(const TowNavEstimate& e)
 {
   std_msgs::Header header;
-  header.stamp = rows_.stampOf(e.t);
+  header.stamp = rows_->stampOf(e.t);
   header.frame_id = params_.world_frame;
+  // The AHRS's attitude while fresh: yaw and pitch with its variances (unknown where it gives none); roll is not
+  // measured (unknown).
+  const bool attitude = std::isfinite(fish_t_) && e.t - fish_t_ <= kFreshAttitude;
+  const Eigen::Vector2d variance = rows_->attitudeVariance();
+  const double pitch_var = attitude && std::isfinite(variance[0]) ? variance[0] : kUnknownVariance;
+  const double yaw_var = attitude && std::isfinite(variance[1]) ? variance[1] : kUnknownVariance;
   geometry_msgs::PoseWithCovarianceStamped pose;
   pose.header = header;
   pose.pose.pose.position = ros_conv::toPoint(e.p_W);
-  const bool attitude = std::isfinite(fish_yaw_) && std::isfinite(fish_pitch_);
   pose.pose.pose.orientation =
       ros_conv::toQuaternion(attitude ? Eigen::Quaterniond(Eigen::AngleAxisd(fish_yaw_, Eigen::Vector3d::UnitZ()) *
                                                            Eigen::AngleAxisd(fish_pitch_, Eigen::Vector3d::UnitY()))
                                       : Eigen::Quaterniond::Identity());
-  const double angle_variance = attitude ? nav_params_.heading_sigma * nav_params_.heading_sigma : kUnknownVariance;
   for (int r = 0; r < 3; ++r)
-  {
     for (int c = 0; c < 3; ++c)
       pose.pose.covariance[6 * r + c] = e.covariance(r, c);
-    pose.pose.covariance[6 * (r + 3) + r + 3] = angle_variance;
-  }
+  pose.pose.covariance[21] = kUnknownVariance;  // roll
+  pose.pose.covariance[28] = pitch_var;
+  pose.pose.covariance[35] = yaw_var;
   pose_pub_.publish(pose);
-
-  if (const GeographicLib::LocalCartesian* origin = rows_.origin())
-  {
-    sensor_msgs::NavSatFix fix;
-    fix.header = header;
-    fix.header.frame_id = params_.fish_frame;
-    fix.status.status = sensor_msgs::NavSatStatus::STATUS_FIX;
-    origin->Reverse(e.p_W.x(), e.p_W.y(), e.p_W.z(), fix.latitude, fix.longitude, fix.altitude);
-    for (int i = 0; i < 9; ++i)
-      fix.position_covariance[i] = e.covariance(i / 3, i % 3);  // ENU, as NavSatFix has it
-    fix.position_covariance_type = sensor_msgs::NavSatFix::COVARIANCE_TYPE_KNOWN;
-    fix_pub_.publish(fix);
-  }
-
-  tow_sim::SensorValue layback, cross_track;
-  layback.header = cross_track.header = header;
-  layback.value = e.layback;
-  cross_track.value = e.cross_track;
-  layback.variance = cross_track.variance = 0.5 * (e.covariance(0, 0) + e.covariance(1, 1));
-  layback_pub_.publish(layback);
-  cross_track_pub_.publish(cross_track);
-
+  if (rows_->origin())
+    fix_pub_.publish(fishFix(header, params_.fish_frame, *rows_->origin(), e));
+  const Eigen::Vector2d forward(std::cos(e.heading), std::sin(e.heading)), port(-forward.y(), forward.x());
+  const Eigen::Matrix2d P = e.covariance.topLeftCorner<2, 2>();
+  layback_pub_.publish(sensorValue(header, e.layback, forward.dot(P * forward)));
+  cross_track_pub_.publish(sensorValue(header, e.cross_track, port.dot(P * port)));
   if (!params_.publish_tf)
     return;
   geometry_msgs::TransformStamped tf;
@@ -183,6 +228,12 @@ void TowNavNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
                     nav_params_.start_after);
   else
     status.summary(DiagnosticStatus::OK, "estimating the towfish's position");
+  const double ahead = rows_->ahead(ros::Time::now());
+  if (ahead > 10.0)
+    status.mergeSummaryf(DiagnosticStatus::WARN,
+                         "the measurements' stamps are %.0f s ahead of the clock: nothing is taken until the clock "
+                         "reaches them (playing a bag: use_sim_time and rosbag play --clock)",
+                         ahead);
   const TowNavEstimate& e = last_;
   const double wall = ros::WallTime::now().toSec();
   status.add("estimate time [s after the epoch]", e.t);
@@ -191,8 +242,12 @@ void TowNavNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
   status.add("current north [m/s]", e.current.y());
   status.add("drag scale [-]", e.drag_scale);
   status.add("rows taken", rows_taken_);
-  status.add("messages refused (bad field)", rows_.refused());
-  status.add("messages late (after their row)", rows_.late());
+  status.add("messages refused (bad field)", rows_->refused());
+  status.add("USBL fixes without a ship pose around them", rows_->unplaced());
+  status.add("messages late (after their row)", rows_->late());
+  status.add("measurements waiting", static_cast<long>(rows_->held()));
+  status.add("newest stamp ahead of the clock [s]", ahead);
+  status.add("restarts (the clock went back)", restarts_);
   status.add("rows rejected (time)", e.rows_rejected);
   status.add("ship fixes rejected", e.fixes_rejected);
   status.add("USBL fixes rejected (gate)", e.usbl_rejected);

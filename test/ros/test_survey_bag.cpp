@@ -14,6 +14,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 
@@ -235,7 +236,12 @@ TEST(SurveyBag, ABagWithoutTheSurveyTopicsIsRefusedNamingThoseItHas)
     EXPECT_NE(std::string(e.what()).find("/survey_ship/survey/ship/fix"), std::string::npos) << e.what();
   }
   EXPECT_THROW(readSurveyBag(scratch("missing.bag"), "/", settings()), std::runtime_error);
-  EXPECT_EQ(
-      runTool("--config " + scratch("nav.yaml") + " --bag " + scratch("missing.bag") + " --out " + scratch("none")), 2);
+  std::ofstream(scratch("nav_only.yaml")) << "cable: {length: 200.0, segments: 10}\n";
+  EXPECT_EQ(runTool("--config " + scratch("nav_only.yaml") + " --bag " + scratch("missing.bag") + " --out " +
+                    scratch("none")),
+            2);
+  std::ifstream log(scratch("tool.log"));
+  const std::string said((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+  EXPECT_NE(said.find("cannot read the bag " + scratch("missing.bag")), std::string::npos) << said;
 }
 }  // namespace

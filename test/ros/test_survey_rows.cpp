@@ -1,6 +1,7 @@
 // A survey vessel's messages as tow_nav's rows (tow_sim/ros/survey_rows.h), without roscore: samples of one
 // instant merge into a row released after `hold`; a USBL fix in the ship frame goes into the world frame with
-// the ship's fixes and headings around its stamp (the inverse of what SurveySensors does, worked by hand here);
+// the ship's fixes and headings on both sides of its stamp, even when the later ones come after it (the inverse
+// of what SurveySensors does, worked by hand here);
 // a pressure becomes a depth; an AHRS quaternion its yaw and pitch; bad and late messages are refused and
 // counted.
 #include <gtest/gtest.h>
@@ -50,8 +51,6 @@ TEST(SurveyRows, SamplesMergeIntoRowsAndAUsblFixGoesIntoTheWorld)
   // The ship at (10, 20) then (12, 20) m, heading 90 deg (north), at t = 0 and 1 s.
   EXPECT_EQ(rows.fix(fixAt(0.0, 10.0, 20.0)), "");
   EXPECT_EQ(rows.heading(headingAt(0.0, M_PI / 2)), "");
-  EXPECT_EQ(rows.fix(fixAt(1.0, 12.0, 20.0)), "");
-  EXPECT_EQ(rows.heading(headingAt(1.0, M_PI / 2)), "");
   // At t = 0.5 s (the ship at (11, 20)) the fish is 100 m astern, 5 m to port and 40 m down. Astern of a ship
   // heading north is south and port is west: the world has it at (11 - 5, 20 - 100, -40).
   geometry_msgs::PointStamped usbl;
@@ -61,6 +60,10 @@ TEST(SurveyRows, SamplesMergeIntoRowsAndAUsblFixGoesIntoTheWorld)
   usbl.point.y = 5.0;
   usbl.point.z = -40.0;
   EXPECT_EQ(rows.usbl(usbl), "");
+  // The ship's next fix comes after the USBL fix (its stamp is past the newest one when it comes): it is placed
+  // between the two, not at the older one.
+  EXPECT_EQ(rows.fix(fixAt(1.0, 12.0, 20.0)), "");
+  EXPECT_EQ(rows.heading(headingAt(1.0, M_PI / 2)), "");
   sensor_msgs::FluidPressure p;
   p.header.stamp = ros::Time(100.0);
   p.fluid_pressure = 101325.0 + 40.0 * 1000.0 * 10.0;
@@ -118,12 +121,17 @@ TEST(SurveyRows, BadAndLateMessagesAreRefusedAndCounted)
   usbl.header.frame_id = "base_link";
   EXPECT_NE(rows.usbl(usbl).find("header.frame_id"), std::string::npos);
   usbl.header.frame_id = "ship";
-  EXPECT_NE(rows.usbl(usbl).find("no ship fix"), std::string::npos);  // none yet
+  usbl.point.y = std::nan("");
+  EXPECT_NE(rows.usbl(usbl).find("point.y = nan"), std::string::npos);
+  usbl.point.y = 0.0;
+  EXPECT_EQ(rows.usbl(usbl), "");  // taken; placed when its row is due, and there is no ship fix around it
   EXPECT_EQ(rows.refused(), 3);
   depth.value = 30.0;
   depth.header.stamp = ros::Time(110.0);
   EXPECT_EQ(rows.depth(depth), "");
   EXPECT_EQ(rows.release(ros::Time(112.0)).size(), 1u);
+  EXPECT_EQ(rows.unplaced(), 1);
+  EXPECT_EQ(rows.refused(), 4);
   depth.header.stamp = ros::Time(109.0);  // before the row released
   EXPECT_EQ(rows.depth(depth), "");
   EXPECT_EQ(rows.late(), 1);

@@ -1,5 +1,6 @@
 // A recorded survey's sensor messages read back as tow_nav's rows (tow_sim_nav --bag, docs/survey.md): the
-// topics tow_nav_node subscribes, under a prefix, turned into rows by SurveyRows (survey_rows.h) in stamp order.
+// topics tow_nav_node subscribes, under a prefix, turned into rows by SurveyRows (survey_rows.h) as the node
+// takes them live, each message at the time it was recorded.
 #pragma once
 
 #include <string>
@@ -14,7 +15,8 @@ struct SurveyBag
   std::vector<SurveyMeasurement> rows;  // t: seconds after `epoch`
   ros::Time epoch;                      // the first message's stamp, whole seconds
   long messages = 0;                    // survey messages read
-  long refused = 0;                     // of them refused (a bad field; SurveyRows says which)
+  long refused = 0;                     // of them refused (a bad field or type; SurveyRows says which)
+  long late = 0;                        // of them recorded after their row had gone (more than hold after)
   std::string first_refusal;            // the first refusal's reason, with its topic
 };
 

@@ -19,6 +19,7 @@
 #include <ros/ros.h>
 #include <tf2_ros/transform_broadcaster.h>
 
+#include <map>
 #include <memory>
 #include <string>
 
@@ -41,16 +42,22 @@ private:
   template <class M>
   ros::Subscriber subscribe(const std::string& topic, std::string (SurveyRows::*take)(const M&));
   void tick(const ros::TimerEvent&);
+  void restart(const ros::Time& now);
+  void warnRefused(const std::string& topic, const std::string& why);
   void publish(const TowNavEstimate& e);
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
 
   ros::NodeHandle nh_;
   TowNavNodeParams params_;
   TowNavParams nav_params_;
-  SurveyRows rows_;
+  SimulationConfig config_;
+  std::unique_ptr<SurveyRows> rows_;
   std::unique_ptr<TowNav> nav_;
   TowNavEstimate last_;
-  double fish_yaw_ = NAN, fish_pitch_ = NAN;  // the AHRS's latest (the pose's orientation)
+  double fish_yaw_ = NAN, fish_pitch_ = NAN, fish_t_ = NAN;  // the AHRS's latest (the pose's orientation), its t
+  ros::Time last_now_;                                       // the clock at the previous tick
+  std::map<std::string, ros::WallTime> warned_;              // when each topic's refusal was last logged
+  long restarts_ = 0;                                        // after the clock went back
   long rows_taken_ = 0;
   double cpu_ = 0.0, cpu_since_ = 0.0;  // [s] the ticks' thread CPU time, and the wall time it was reset at
   ros::Publisher pose_pub_, fix_pub_, layback_pub_, cross_track_pub_;

@@ -100,7 +100,7 @@ TowNav::~TowNav() = default;
 void TowNav::takeShip(const SurveyMeasurement& row)
 {
   if (std::isfinite(row.ship_heading))
-    heading_ = row.ship_heading;
+    heading_ = row.ship_heading, heading_t_ = row.t;
   if (!std::isfinite(row.ship_x) || !std::isfinite(row.ship_y) || !std::isfinite(heading_))
     return;
   if (!std::isnan(last_fix_) && row.t <= last_fix_)
@@ -354,12 +354,12 @@ TowNavEstimate TowNav::estimateAt(double t) const
     e.covariance.col(2).setZero();
     e.covariance(2, 2) = params_.depth_sigma * params_.depth_sigma;
   }
-  // Layback and cross-track along the latest measured heading (a gyro's is far better than the smoothed
-  // track's, which lags by metres at the start of a turn), from the tow point on the smoothed track.
+  // Layback and cross-track along the latest measured heading while it is fresh (a gyro's is far better than
+  // the smoothed track's, which lags by metres at the start of a turn), from the tow point on the smoothed track.
   Eigen::Vector3d ship, tow;
   double yaw = 0.0;
   shipAt(t, ship, yaw, tow);
-  if (std::isfinite(heading_))
+  if (std::isfinite(heading_) && t - heading_t_ <= kFreshHeading)
   {
     yaw = heading_;
     tow = ship + Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix() * params_.tow_point_S;
@@ -367,6 +367,7 @@ TowNavEstimate TowNav::estimateAt(double t) const
   const Eigen::Vector3d d = e.p_W - tow;
   e.layback = -(d.x() * std::cos(yaw) + d.y() * std::sin(yaw));
   e.cross_track = -d.x() * std::sin(yaw) + d.y() * std::cos(yaw);
+  e.heading = yaw;
   return e;
 }
 

@@ -72,8 +72,9 @@ struct TowNavEstimate
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  // [m^2]
   double layback = 0.0;                                  // [m] behind the tow point along the ship's heading
   double cross_track = 0.0;                              // [m] off the tow point's line, positive to port
-  Eigen::Vector2d current = Eigen::Vector2d::Zero();     // [m/s] the members' mean
-  double drag_scale = 1.0;                               // [-] exp of the mean ln k
+  double heading = 0.0;  // [rad] the ship's heading they are along (the measured one while fresh, else the track's)
+  Eigen::Vector2d current = Eigen::Vector2d::Zero();  // [m/s] the members' mean
+  double drag_scale = 1.0;                            // [-] exp of the mean ln k
   // Refused so far: rows (no time, or earlier than the last), ship fixes (not after the previous fix), USBL fixes
   // (outside the gate), depths (below the configured seabed under the estimate by more than 3 depth_sigma).
   long rows_rejected = 0, fixes_rejected = 0, usbl_rejected = 0, depths_rejected = 0;
@@ -146,11 +147,13 @@ private:
   std::vector<Member> members_;
   double t_ = -1e300, first_fix_ = NAN, last_fix_ = NAN, heading_ = NAN;
   double next_analysis_ = 0.0, last_analysis_ = 0.0, last_knot_ = -1e300, offsets_at_ = 0.0;
-  double cable_out_ = NAN, depth_ = NAN;       // the latest (the baselines'; the depth also the estimate's z)
-  double depth_t_ = NAN;                       // [s] the latest depth's row time
-  static constexpr double kFreshDepth = 10.0;  // [s] a depth this old is still the estimate's z
-  std::vector<SurveyMeasurement> window_;      // rows with a depth, tension or fish heading not yet analysed
-  std::vector<PendingFix> fixes_;              // USBL fixes not yet analysed
+  double cable_out_ = NAN, depth_ = NAN;        // the latest (the baselines'; the depth also the estimate's z)
+  double depth_t_ = NAN;                        // [s] the latest depth's row time
+  static constexpr double kFreshDepth = 10.0;   // [s] a depth this old is still the estimate's z
+  static constexpr double kFreshHeading = 5.0;  // [s] a heading this old is still the layback's direction
+  double heading_t_ = NAN;                      // [s] the latest heading's row time
+  std::vector<SurveyMeasurement> window_;       // rows with a depth, tension or fish heading not yet analysed
+  std::vector<PendingFix> fixes_;               // USBL fixes not yet analysed
   long rows_rejected_ = 0, fixes_rejected_ = 0, usbl_rejected_ = 0, depths_rejected_ = 0;
   std::unique_ptr<Seabed> seabed_;  // the configuration's, if it has one (depths below it are refused)
   bool usbl_seen_ = false;          // a USBL fix has passed the gate: the offsets walk from then on
