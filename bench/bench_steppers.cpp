@@ -3,7 +3,10 @@
 //   steady   a 500 m cable towed at 2 m/s in a straight line, from its equilibrium;
 //   turn     the same ship turning 180 degrees to port on a 200 m radius from t = 0;
 //   deep     6000 m of 0.04 m, 6 kg/m cable at 1.5 m/s (steady), nu = 1000;
-//   two_part a two-part deep tow (sections, a clump and a float; nu = 600 + 100) beside its uniform cable.
+//   two_part a two-part deep tow (sections, a clump and a float; nu = 600 + 100) beside its uniform cable;
+//   parted   the steady tow's elastic cable (EA 1e8 N) parted at the tow point in the first step, the whole
+//            cable sinking from a free end: on the implicit stepper (which steps a parted cable's chains:
+//            docs/solver.md (S27)) beside dopri5 (what the steppers fell back to once parted, before).
 // Steppers: dopri5 (default tolerances), rk4 at its largest stable fixed step (from 2.5 / omega_max, the
 // zig-zag mode omega_max^2 = 12 T / (m_eff d^2) at the tow point's tension, shortened until 60 s of the run
 // go through), implicit (default tolerances); and implicit on an elastic cable (EA 1e8 N, c = 0.01 s EA).
@@ -90,7 +93,8 @@ double rk4Step(const SimulationConfig& c, double tension)
   return std::min(1.0, 2.5 / omega);
 }
 
-void timeRun(benchmark::State& state, const SimulationConfig& c, std::shared_ptr<ShipHistory> ship, double chunk);
+void timeRun(benchmark::State& state, const SimulationConfig& c, std::shared_ptr<ShipHistory> ship, double chunk,
+             double startup = 2.0);
 
 void BM_Tow(benchmark::State& state, Path path, bool deep, StepperType stepper, int segments, double chunk,
             ImplicitMethod method, double axial_stiffness)
@@ -169,12 +173,26 @@ void BM_TwoPart(benchmark::State& state, bool two_part)
   timeRun(state, c, shipPath(Path::kStraight, 1.0, 100.0), 10.0);
 }
 
-// Times `chunk` simulated seconds an iteration of a TowRun of c on `ship` after 2 s of start-up.
-void timeRun(benchmark::State& state, const SimulationConfig& c, std::shared_ptr<ShipHistory> ship, double chunk)
+// The steady tow's elastic cable (EA 1e8 N, c = 0.01 s EA) parted at the tow point at once (a breaking load
+// of 1 N), then timed sinking on `stepper` from 0.1 s.
+void BM_Parted(benchmark::State& state, StepperType stepper, int segments, double chunk)
+{
+  SimulationConfig c = config(segments, false);
+  c.cable.axial_stiffness = 1.0e8;
+  c.cable.axial_damping = 0.01 * 1.0e8;
+  c.cable.breaking_load = 1.0;
+  c.cable.break_at_breaking_load = true;
+  c.numerics.stepper = stepper;
+  timeRun(state, c, shipPath(Path::kStraight, 2.0, 12.0 + chunk * 6.0), chunk, 0.1);
+}
+
+// Times `chunk` simulated seconds an iteration of a TowRun of c on `ship` after `startup` seconds.
+void timeRun(benchmark::State& state, const SimulationConfig& c, std::shared_ptr<ShipHistory> ship, double chunk,
+             double startup)
 {
   TowRun run(c, std::move(ship));
   run.start(0.0);
-  run.advanceTo(2.0);
+  run.advanceTo(startup);
   double simulated = 0.0;
   for (auto _ : state)
   {
@@ -234,6 +252,16 @@ void registerAll()
                                  true, v.stepper, 1000, 10.0, v.method, 0.0)
         ->Iterations(3)
         ->Unit(benchmark::kMillisecond);
+  // nu = 100 only: at nu = 1000 the first 0.2 s after the parting take minutes on either stepper
+  // (docs/benchmarks.md).
+  for (StepperType stepper : { StepperType::kImplicit, StepperType::kDopri5 })
+  {
+    const bool slow = stepper == StepperType::kDopri5;
+    benchmark::RegisterBenchmark(slow ? "parted/dopri5_elastic_ea1e8/nu:100" : "parted/implicit_elastic_ea1e8/nu:100",
+                                 BM_Parted, stepper, 100, slow ? 0.01 : 10.0)
+        ->Iterations(3)
+        ->Unit(benchmark::kMillisecond);
+  }
   for (bool two_part : { false, true })
     benchmark::RegisterBenchmark(two_part ? "two_part/implicit/nu:600+100" : "two_part/implicit_uniform/nu:700",
                                  BM_TwoPart, two_part)

@@ -4,7 +4,7 @@
 // element's 6 x 6 body inertia, the length constraints, the load derivatives D and K of elementJacobian,
 // which test_chain_jacobian checks against central differences), then I - gamma h J factored with a full
 // pivot LU. Random states, nu = 1 .. 20, the vehicle in Approaches A, B and B + Munk, the winch paying
-// out, a seabed under part of the chain.
+// out, a seabed under part of the chain, a free first joint (a parted cable).
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -39,16 +39,61 @@ struct Linearisation
 
 // The dense J of the linearised chain: d/dt (x, v, L, R) = (v, a, R, a_w(L, R)) with
 // M a = K (x, x_tow) + D (v, v_tow) + G^T lambda, G a = 0 (M, G frozen at the state); its last six columns
-// are the chain's response to the tow point's position and velocity (x_tow, v_tow).
+// are the chain's response to the tow point's position and velocity (x_tow, v_tow). With `free` the first
+// joint is an unknown too (a parted cable's free end, docs/solver.md (S27)): its rows and columns are laid
+// out as StateLayout{nu + 1, true} says (after the cable out and the rate), the force on it from outside is
+// the seabed's, and there are no tow-point columns.
 using MatrixXld = Eigen::Matrix<long double, Eigen::Dynamic, Eigen::Dynamic>;
 using VectorXld = Eigen::Matrix<long double, Eigen::Dynamic, 1>;
 
+// J of a free chain from the ordering (x_1, x_2 .., v_1, v_2 .., L, R) to StateLayout's
+// (x_2 .., v_2 .., L, R, x_1, v_1), n joints after the free one.
+MatrixXld freeLayoutOrder(const MatrixXld& J, int n)
+{
+  const int size = static_cast<int>(J.rows()), dof = 3 * n + 3;
+  std::vector<int> to(static_cast<size_t>(size));
+  for (int i = 0; i < 3; ++i)
+  {
+    to[static_cast<size_t>(i)] = 6 * n + 2 + i;
+    to[static_cast<size_t>(dof + i)] = 6 * n + 5 + i;
+  }
+  for (int i = 0; i < 3 * n; ++i)
+  {
+    to[static_cast<size_t>(3 + i)] = i;
+    to[static_cast<size_t>(dof + 3 + i)] = 3 * n + i;
+  }
+  to[static_cast<size_t>(2 * dof)] = 6 * n;
+  to[static_cast<size_t>(2 * dof + 1)] = 6 * n + 1;
+  MatrixXld laid_out = MatrixXld::Zero(size, J.cols());
+  for (int a = 0; a < size; ++a)
+    for (int b = 0; b < size; ++b)
+      laid_out(to[static_cast<size_t>(a)], to[static_cast<size_t>(b)]) = J(a, b);
+  return laid_out;
+}
+
+// The seabed's force on a free first joint at `first` (half its segment's length in contact, as Chain's), and
+// its derivatives.
+Eigen::Vector3d freeJointContact(const RandomCase& c, const ShipEndState& first, Eigen::Matrix3d& df_dp,
+                                 Eigen::Matrix3d& df_dv)
+{
+  df_dp.setZero();
+  df_dv.setZero();
+  const Seabed* bottom = c.model->seabed();
+  if (!bottom || c.geometry.segments == 0)
+    return Eigen::Vector3d::Zero();
+  const double k = bottom->params().stiffness * 0.5 * c.geometry.elementLength(0);
+  const double damping = bottom->params().damping * 0.5 * c.geometry.elementLength(0);
+  bottom->contactJacobian(first.p_W, first.v_W, k, damping, df_dp, df_dv);
+  return bottom->contactForce(first.p_W, first.v_W, k, damping);
+}
+
 MatrixXld denseJacobian(const RandomCase& c, double t, const Linearisation& lin, const std::vector<double>& multipliers,
-                        const Eigen::Matrix3Xd& accelerations)
+                        const Eigen::Matrix3Xd& accelerations, bool free = false)
 {
   const ChainModel& model = *c.model;
   const int n = c.geometry.elementCount();  // = joints
-  const int dof = 3 * n;
+  const int first = free ? 3 : 0;           // the free joint's unknowns come first in this ordering
+  const int dof = 3 * n + first;
   Eigen::MatrixXd M = Eigen::MatrixXd::Zero(dof, dof), D = M, K = M;
   Eigen::MatrixXd G = Eigen::MatrixXd::Zero(n, dof);
   Eigen::Matrix3d K_tow = Eigen::Matrix3d::Zero(), D_tow = K_tow;  // joint x_2's load on the tow point's motion
@@ -69,8 +114,9 @@ MatrixXld denseJacobian(const RandomCase& c, double t, const Linearisation& lin,
     Vector6d a_joints;
     a_joints << (e == 0 ? c.ship.a_W : Eigen::Vector3d(accelerations.col(e - 1))), accelerations.col(e);
     elementJacobian(model, e, t, k, c.geometry, c.data, multipliers[e], jac, &a_joints);
-    // Columns/rows of the element's two joints; the forward one of element 0 is the tow point (no unknown).
-    const int cols[2] = { e == 0 ? -1 : 3 * (e - 1), 3 * e };
+    // Columns/rows of the element's two joints; the forward one of element 0 is the tow point (no unknown)
+    // or the free joint.
+    const int cols[2] = { e == 0 ? (free ? 0 : -1) : first + 3 * (e - 1), first + 3 * e };
     for (int a = 0; a < 2; ++a)
       for (int b = 0; b < 2; ++b)
         if (cols[a] >= 0 && cols[b] >= 0)
@@ -84,9 +130,16 @@ MatrixXld denseJacobian(const RandomCase& c, double t, const Linearisation& lin,
       K_tow = jac.dh_dx.block<3, 3>(3, 0);
       D_tow = jac.dh_dv.block<3, 3>(3, 0);
     }
-    G.block<1, 3>(e, 3 * e) = k.s.transpose();
-    if (e > 0)
-      G.block<1, 3>(e, 3 * (e - 1)) = -k.s.transpose();
+    G.block<1, 3>(e, cols[1]) = k.s.transpose();
+    if (cols[0] >= 0)
+      G.block<1, 3>(e, cols[0]) = -k.s.transpose();
+  }
+  if (free)  // the seabed on the free joint
+  {
+    Eigen::Matrix3d df_dp, df_dv;
+    freeJointContact(c, c.ship, df_dp, df_dv);
+    K.topLeftCorner<3, 3>() += df_dp;
+    D.topLeftCorner<3, 3>() += df_dv;
   }
   // a = A_x x + A_v v from the KKT system [M -G^T; G 0] (a, lambda) = (K x + D v, 0).
   Eigen::MatrixXd kkt = Eigen::MatrixXd::Zero(dof + n, dof + n);
@@ -96,8 +149,8 @@ MatrixXld denseJacobian(const RandomCase& c, double t, const Linearisation& lin,
   Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(dof + n, 2 * dof + 6);
   rhs.topLeftCorner(dof, dof) = K;
   rhs.block(0, dof, dof, dof) = D;
-  rhs.block<3, 3>(0, 2 * dof) = K_tow;
-  rhs.block<3, 3>(0, 2 * dof + 3) = D_tow;
+  rhs.block<3, 3>(first, 2 * dof) = K_tow;
+  rhs.block<3, 3>(first, 2 * dof + 3) = D_tow;
   // In long double: J has entries up to M^-1 K, and the reference must stay well inside 1e-8 at large h.
   const MatrixXld sol = kkt.cast<long double>().fullPivLu().solve(rhs.cast<long double>());
   const int size = 2 * dof + 2;
@@ -108,24 +161,41 @@ MatrixXld denseJacobian(const RandomCase& c, double t, const Linearisation& lin,
   J(2 * dof, 2 * dof + 1) = 1.0;
   J(2 * dof + 1, 2 * dof) = lin.d_length;
   J(2 * dof + 1, 2 * dof + 1) = lin.d_rate;
-  return J;
+  return free ? freeLayoutOrder(J, n) : J;
 }
 
 // One random case: the O(nu) stage solve against the dense one for several step sizes and right-hand sides.
-void expectStageMatchesDense(const RandomCase& c, double t, std::mt19937& rng, const std::string& what)
+// With `free`, the case's tow point is the free first joint of a parted chain (no winch on it).
+void expectStageMatchesDense(const RandomCase& c, double t, std::mt19937& rng, const std::string& what,
+                             bool free = false)
 {
   const int n = c.geometry.elementCount();
   ChainSolver solver;
   Eigen::Matrix3Xd a(3, n);
   std::vector<double> multipliers;
-  solver.solve(*c.model, c.geometry, c.data, t, c.ship, c.x, c.v, a, nullptr, &multipliers);
+  ShipEndState first = c.ship;
+  Eigen::Matrix3d dF_dx = Eigen::Matrix3d::Zero(), dF_dv = Eigen::Matrix3d::Zero();
+  if (free)
+    first.a_W = solver.solveFree(*c.model, c.geometry, c.data, t, c.ship, c.x, c.v, a, nullptr, &multipliers,
+                                 freeJointContact(c, c.ship, dF_dx, dF_dv));
+  else
+    solver.solve(*c.model, c.geometry, c.data, t, c.ship, c.x, c.v, a, nullptr, &multipliers);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   const Linearisation lin{ -0.5 + u(rng), -2.0 + u(rng) };
+  const StateLayout layout{ n, free };
   ImplicitStepper stepper;
-  stepper.linearise(*c.model, c.geometry, c.data, t, c.ship, c.x, c.v, a, solver.terms(), multipliers, lin.d_length,
-                    lin.d_rate);
-  const MatrixXld J = denseJacobian(c, t, lin, multipliers, a);
-  const StateLayout layout{ n };
+  if (free)
+  {
+    stepper.beginLinearisation(1, lin.d_length, lin.d_rate);
+    stepper.lineariseChain(0, layout, *c.model, c.geometry, c.data, t, first, c.x, c.v, a, solver.terms(), multipliers,
+                           dF_dx, dF_dv);
+  }
+  else
+    stepper.linearise(*c.model, c.geometry, c.data, t, c.ship, c.x, c.v, a, solver.terms(), multipliers, lin.d_length,
+                      lin.d_rate);
+  RandomCase linearised = c;
+  linearised.ship = first;
+  const MatrixXld J = denseJacobian(linearised, t, lin, multipliers, a, free);
   for (double h : { 1e-3, 0.05, 0.5, 2.0 })
   {
     stepper.factor(h);
@@ -139,7 +209,7 @@ void expectStageMatchesDense(const RandomCase& c, double t, std::mt19937& rng, c
       std::vector<double> r(layout.size()), K;
       for (double& value : r)
         value = u(rng);
-      // The tow point's increments are known: they move to the right-hand side.
+      // The tow point's increments are known: they move to the right-hand side (none on a free chain).
       const TowPointRates tow{ test::randomVector(rng, 1.0), test::randomVector(rng, 1.0) };
       stepper.solve(r, tow, K);
       VectorXld K_tow(6);
@@ -181,6 +251,23 @@ TEST(ImplicitStage, WithTheWinchPayingOutAndASeabed)
       expectStageMatchesDense(makeRandomCase(segments, rng, kind, true), 0.2, rng, "winch");
       expectStageMatchesDense(makeRandomCase(segments, rng, kind, false, true), 0.2, rng, "seabed");
     }
+}
+
+TEST(ImplicitStage, AFreeFirstJointMatchesTheDenseSolve)
+{
+  // A parted cable's vehicle side: the first joint's position and velocity are unknowns of the stage, with
+  // nothing pulling on it but the seabed (about half of the cases lie on it there).
+  std::mt19937 rng(4711);
+  int in_contact = 0;
+  for (EndKind kind : { EndKind::kRigid, EndKind::kVehicleA, EndKind::kVehicleB })
+    for (int segments = 1; segments <= 20; ++segments)
+    {
+      expectStageMatchesDense(makeRandomCase(segments, rng, kind), 0.3, rng, "free", true);
+      const RandomCase on_bottom = makeRandomCase(segments, rng, kind, false, true);
+      in_contact += on_bottom.model->seabed()->altitude(on_bottom.ship.p_W) < 0.0;
+      expectStageMatchesDense(on_bottom, 0.3, rng, "free on a seabed", true);
+    }
+  EXPECT_GT(in_contact, 5);  // the free joint's contact was exercised
 }
 
 }  // namespace

@@ -133,4 +133,17 @@ Eigen::Vector3d Chain::freeEndContact(const ChainModel& model, const ChainGeomet
                               bottom->params().damping * carried);
 }
 
+void Chain::freeEndContactJacobian(const ChainModel& model, const ShipEndState& end, Eigen::Matrix3d& dF_dx,
+                                   Eigen::Matrix3d& dF_dv) const
+{
+  dF_dx.setZero();
+  dF_dv.setZero();
+  const Seabed* bottom = model.seabed();
+  if (!bottom || geometry_.segments == 0)
+    return;
+  const double carried = 0.5 * geometry_.elementLength(0);  // as freeEndContact
+  bottom->contactJacobian(end.p_W, end.v_W, bottom->params().stiffness * carried, bottom->params().damping * carried,
+                          dF_dx, dF_dv);
+}
+
 }  // namespace tow_sim

@@ -11,27 +11,72 @@ void ImplicitStepper::linearise(const ChainModel& model, const ChainGeometry& ge
                                 const Eigen::Ref<const Eigen::Matrix3Xd>& a, const std::vector<ElementTerms>& terms,
                                 const std::vector<double>& multipliers, double winch_d_length, double winch_d_rate)
 {
-  const size_t n = terms.size();
-  inertia_ = terms;
-  jacobians_.resize(n);
-  stage_.resize(n);
-  for (size_t i = 0; i < n; ++i)
-  {
-    const int e = static_cast<int>(i);
-    const Eigen::Vector3d x_f = e == 0 ? ship.p_W : Eigen::Vector3d(x.col(e - 1));
-    const Eigen::Vector3d v_f = e == 0 ? ship.v_W : Eigen::Vector3d(v.col(e - 1));
-    const ElementKinematics k = ElementKinematics::fromJoints(x_f, x.col(e), v_f, v.col(e));
-    Vector6d a_joints;
-    a_joints << (e == 0 ? ship.a_W : Eigen::Vector3d(a.col(e - 1))), a.col(e);
-    elementJacobian(model, e, t, k, geometry, data, multipliers[i], jacobians_[i], &a_joints);
-    if (model.bends())
-      addBendingStiffness(model, geometry, ship.p_W, x, e, jacobians_[i]);
-    stage_[i].s = terms[i].s;
-    stage_[i].constrained = terms[i].constrained;
-  }
+  beginLinearisation(1, winch_d_length, winch_d_rate);
+  lineariseChain(0, StateLayout{ static_cast<int>(terms.size()) }, model, geometry, data, t, ship, x, v, a, terms,
+                 multipliers);
+}
+
+void ImplicitStepper::beginLinearisation(std::size_t chains, double winch_d_length, double winch_d_rate)
+{
+  blocks_.resize(chains);
   winch_d_length_ = winch_d_length;
   winch_d_rate_ = winch_d_rate;
   h_ = 0.0;  // factor() must follow
+}
+
+// (S16) per element; for a free first joint (S27) the force on it from outside as a load on the first
+// element's forward joint.
+void ImplicitStepper::lineariseChain(std::size_t index, const StateLayout& layout, const ChainModel& model,
+                                     const ChainGeometry& geometry, const ChainData& data, double t,
+                                     const ShipEndState& first, const Eigen::Ref<const Eigen::Matrix3Xd>& x,
+                                     const Eigen::Ref<const Eigen::Matrix3Xd>& v,
+                                     const Eigen::Ref<const Eigen::Matrix3Xd>& a,
+                                     const std::vector<ElementTerms>& terms, const std::vector<double>& multipliers,
+                                     const Eigen::Matrix3d& first_dF_dx, const Eigen::Matrix3d& first_dF_dv)
+{
+  Block& block = blocks_.at(index);
+  const size_t n = terms.size();
+  block.layout = layout;
+  block.inertia = terms;
+  block.jacobians.resize(n);
+  block.stage.resize(n);
+  for (size_t i = 0; i < n; ++i)
+  {
+    const int e = static_cast<int>(i);
+    const Eigen::Vector3d x_f = e == 0 ? first.p_W : Eigen::Vector3d(x.col(e - 1));
+    const Eigen::Vector3d v_f = e == 0 ? first.v_W : Eigen::Vector3d(v.col(e - 1));
+    const ElementKinematics k = ElementKinematics::fromJoints(x_f, x.col(e), v_f, v.col(e));
+    Vector6d a_joints;
+    a_joints << (e == 0 ? first.a_W : Eigen::Vector3d(a.col(e - 1))), a.col(e);
+    ElementJacobian& jacobian = block.jacobians[i];
+    elementJacobian(model, e, t, k, geometry, data, multipliers[i], jacobian, &a_joints);
+    if (model.bends())
+      addBendingStiffness(model, geometry, first.p_W, x, e, jacobian);
+    block.stage[i].s = terms[i].s;
+    block.stage[i].constrained = terms[i].constrained;
+  }
+  if (layout.free && n > 0)
+  {
+    block.jacobians[0].dh_dx.topLeftCorner<3, 3>() += first_dF_dx;
+    block.jacobians[0].dh_dv.topLeftCorner<3, 3>() += first_dF_dv;
+  }
+  h_ = 0.0;
+}
+
+void ImplicitStepper::lineariseChain(std::size_t index, const Chain& chain, const ChainModel& model,
+                                     const ChainData& data, double t, const ShipEndState& ship,
+                                     const std::vector<double>& y, const std::vector<double>& dydt)
+{
+  const StateLayout& L = chain.layout();
+  ShipEndState first = chain.firstJoint(ship, y);
+  Eigen::Matrix3d dF_dx = Eigen::Matrix3d::Zero(), dF_dv = Eigen::Matrix3d::Zero();
+  if (L.free)
+  {
+    first.a_W = L.freeVelocity(dydt);
+    chain.freeEndContactJacobian(model, first, dF_dx, dF_dv);
+  }
+  lineariseChain(index, L, model, chain.geometry(), data, t, first, L.positions(y), L.velocities(y),
+                 chain.accelerations(), chain.terms(), chain.axialMultipliers(), dF_dx, dF_dv);
 }
 
 // (S19): the stage matrix N = M - gamma h D - (gamma h)^2 K per element, with D = dh/dv and K = dh/dx of
@@ -39,51 +84,75 @@ void ImplicitStepper::linearise(const ChainModel& model, const ChainGeometry& ge
 void ImplicitStepper::factor(double h)
 {
   const double gh = gamma_ * h, gh2 = gh * gh;
-  for (size_t i = 0; i < stage_.size(); ++i)
+  for (Block& block : blocks_)
   {
-    const ElementTerms& M = inertia_[i];
-    const Matrix6d& D = jacobians_[i].dh_dv;
-    const Matrix6d& K = jacobians_[i].dh_dx;
-    ElementTerms& N = stage_[i];
-    N.M_ff = M.M_ff - gh * D.topLeftCorner<3, 3>() - gh2 * K.topLeftCorner<3, 3>();
-    N.M_fa = M.M_fa - gh * D.topRightCorner<3, 3>() - gh2 * K.topRightCorner<3, 3>();
-    N.M_af = M.M_af - gh * D.bottomLeftCorner<3, 3>() - gh2 * K.bottomLeftCorner<3, 3>();
-    N.M_aa = M.M_aa - gh * D.bottomRightCorner<3, 3>() - gh2 * K.bottomRightCorner<3, 3>();
+    for (size_t i = 0; i < block.stage.size(); ++i)
+    {
+      const ElementTerms& M = block.inertia[i];
+      const Matrix6d& D = block.jacobians[i].dh_dv;
+      const Matrix6d& K = block.jacobians[i].dh_dx;
+      ElementTerms& N = block.stage[i];
+      N.M_ff = M.M_ff - gh * D.topLeftCorner<3, 3>() - gh2 * K.topLeftCorner<3, 3>();
+      N.M_fa = M.M_fa - gh * D.topRightCorner<3, 3>() - gh2 * K.topRightCorner<3, 3>();
+      N.M_af = M.M_af - gh * D.bottomLeftCorner<3, 3>() - gh2 * K.bottomLeftCorner<3, 3>();
+      N.M_aa = M.M_aa - gh * D.bottomRightCorner<3, 3>() - gh2 * K.bottomRightCorner<3, 3>();
+    }
+    block.sweep.factor(block.stage);
   }
-  sweep_.factor(stage_);
   h_ = h;
 }
 
 void ImplicitStepper::solve(const std::vector<double>& r, const TowPointRates& tow, std::vector<double>& K)
 {
-  const StateLayout L{ joints() };
+  K.resize(r.size());
+  for (Block& block : blocks_)
+    solveBlock(block, r, tow, K);
+}
+
+void ImplicitStepper::solveBlock(Block& block, const std::vector<double>& r, const TowPointRates& tow,
+                                 std::vector<double>& K)
+{
+  const StateLayout& L = block.layout;
   const double gh = gamma_ * h_;
   const auto r_x = L.positions(r);
   const auto r_v = L.velocities(r);
-  for (size_t i = 0; i < stage_.size(); ++i)
+  // The first joint: the tow point, whose K is known: the same form holds with r_v = K_v (its acceleration
+  // increment is not an unknown: K_v - r_v = 0) and r_x = K_x - gamma h K_v. A free first joint (S27): its
+  // own rows of r.
+  const Eigen::Vector3d rv_first = L.free ? Eigen::Vector3d(L.freeVelocity(r)) : tow.v;
+  const Eigen::Vector3d rx_first = L.free ? Eigen::Vector3d(L.freePosition(r)) : Eigen::Vector3d(tow.x - gh * tow.v);
+  for (size_t i = 0; i < block.stage.size(); ++i)
   {
     // (S19): g = M r_v + gamma h K r_x over the element's two joints, c' = s.(r_v,a - r_v,f): the loads and
-    // the constraint of (S18), the linearised element (S17) scaled by gamma h. For the tow point, whose K is
-    // known, the same form holds with r_v = K_v (its acceleration increment is not an unknown: K_v - r_v = 0)
-    // and r_x = K_x - gamma h K_v.
+    // the constraint of (S18), the linearised element (S17) scaled by gamma h.
     const Eigen::Index e = static_cast<Eigen::Index>(i);
-    const Eigen::Vector3d rv_f = e == 0 ? tow.v : Eigen::Vector3d(r_v.col(e - 1));
-    const Eigen::Vector3d rx_f = e == 0 ? Eigen::Vector3d(tow.x - gh * tow.v) : Eigen::Vector3d(r_x.col(e - 1));
+    const Eigen::Vector3d rv_f = e == 0 ? rv_first : Eigen::Vector3d(r_v.col(e - 1));
+    const Eigen::Vector3d rx_f = e == 0 ? rx_first : Eigen::Vector3d(r_x.col(e - 1));
     const Eigen::Vector3d rv_a = r_v.col(e), rx_a = r_x.col(e);
-    const ElementTerms& M = inertia_[i];
-    const Matrix6d& Kx = jacobians_[i].dh_dx;
-    ElementTerms& stage = stage_[i];
+    const ElementTerms& M = block.inertia[i];
+    const Matrix6d& Kx = block.jacobians[i].dh_dx;
+    ElementTerms& stage = block.stage[i];
     stage.h_f =
         M.M_ff * rv_f + M.M_fa * rv_a + gh * (Kx.topLeftCorner<3, 3>() * rx_f + Kx.topRightCorner<3, 3>() * rx_a);
     stage.h_a =
         M.M_af * rv_f + M.M_aa * rv_a + gh * (Kx.bottomLeftCorner<3, 3>() * rx_f + Kx.bottomRightCorner<3, 3>() * rx_a);
     stage.c = stage.s.dot(rv_a - rv_f);
   }
-  K.resize(r.size());
-  K_v_.resize(3, L.joints);
-  sweep_.solve(stage_, tow.v, K_v_);
-  L.velocities(K) = K_v_;
-  L.positions(K) = r_x + gh * K_v_;  // K_x = r_x + gamma h K_v (docs/solver.md §7)
+  block.K_v.resize(3, L.joints);
+  if (L.free)
+  {
+    // (S27): nothing outside the chain moves with the stage (the contact's derivatives are in the first
+    // element's loads): T'_1 = 0 at the free joint.
+    const Eigen::Vector3d K_first = block.sweep.solveFree(block.stage, block.K_v);
+    L.freeVelocity(K) = K_first;
+    L.freePosition(K) = rx_first + gh * K_first;
+  }
+  else
+    block.sweep.solve(block.stage, tow.v, block.K_v);
+  L.velocities(K) = block.K_v;
+  L.positions(K) = r_x + gh * block.K_v;  // K_x = r_x + gamma h K_v (docs/solver.md §7)
+  if (!L.winch)
+    return;
   // The winch: [1, -gh; -gh a_L, 1 - gh a_R] (K_L, K_R) = (r_L, r_R).
   const double r_L = L.cableOut(r), r_R = L.payoutRate(r);
   const double det = (1.0 - gh * winch_d_rate_) - gh * gh * winch_d_length_;
@@ -137,32 +206,41 @@ void ImplicitStepper::stages(const RosenbrockTableau& rw, double t, double h, co
 }
 
 // (S24): positions relative to the tow point, velocities as they are.
-double implicitErrorNorm(const NumericsParams& num, const StateLayout& L, bool winch, const std::vector<double>& error,
-                         const std::vector<double>& y, const std::vector<double>& y_next, const Eigen::Vector3d& p0,
-                         const Eigen::Vector3d& p1)
+double implicitErrorNorm(const NumericsParams& num, const std::vector<Chain>& chains, bool winch,
+                         const std::vector<double>& error, const std::vector<double>& y,
+                         const std::vector<double>& y_next, const Eigen::Vector3d& p0, const Eigen::Vector3d& p1)
 {
-  const auto e_x = L.positions(error), e_v = L.velocities(error);
-  const auto x0 = L.positions(y), x1 = L.positions(y_next);
-  const auto v0 = L.velocities(y), v1 = L.velocities(y_next);
-  double sum = 0.0;
-  for (int j = 0; j < L.joints; ++j)
-    for (int i = 0; i < 3; ++i)
-    {
-      const double scale_x = num.implicit_position_tol +
-                             num.implicit_rel_tol * std::max(std::abs(x0(i, j) - p0[i]), std::abs(x1(i, j) - p1[i]));
-      const double scale_v =
-          num.implicit_velocity_tol + num.implicit_rel_tol * std::max(std::abs(v0(i, j)), std::abs(v1(i, j)));
-      sum += std::pow(e_x(i, j) / scale_x, 2) + std::pow(e_v(i, j) / scale_v, 2);
-    }
-  double count = 6.0 * L.joints;
-  if (winch)
+  double sum = 0.0, count = 0.0;
+  // The squared ratio of one component's error to its scale; a position and its velocity are summed as a
+  // pair.
+  auto ratio = [&](double e, double value0, double value1, double atol)
+  { return std::pow(e / (atol + num.implicit_rel_tol * std::max(std::abs(value0), std::abs(value1))), 2); };
+  for (const Chain& chain : chains)
   {
-    const double scale_l = num.implicit_position_tol +
-                           num.implicit_rel_tol * std::max(std::abs(L.cableOut(y)), std::abs(L.cableOut(y_next)));
-    const double scale_r = num.implicit_velocity_tol +
-                           num.implicit_rel_tol * std::max(std::abs(L.payoutRate(y)), std::abs(L.payoutRate(y_next)));
-    sum += std::pow(L.cableOut(error) / scale_l, 2) + std::pow(L.payoutRate(error) / scale_r, 2);
-    count += 2.0;
+    const StateLayout& L = chain.layout();
+    const auto e_x = L.positions(error), e_v = L.velocities(error);
+    const auto x0 = L.positions(y), x1 = L.positions(y_next);
+    const auto v0 = L.velocities(y), v1 = L.velocities(y_next);
+    for (int j = 0; j < L.joints; ++j)
+      for (int i = 0; i < 3; ++i)
+        sum += ratio(e_x(i, j), x0(i, j) - p0[i], x1(i, j) - p1[i], num.implicit_position_tol) +
+               ratio(e_v(i, j), v0(i, j), v1(i, j), num.implicit_velocity_tol);
+    count += 6.0 * L.joints;
+    if (L.winch && winch)
+    {
+      sum += ratio(L.cableOut(error), L.cableOut(y), L.cableOut(y_next), num.implicit_position_tol) +
+             ratio(L.payoutRate(error), L.payoutRate(y), L.payoutRate(y_next), num.implicit_velocity_tol);
+      count += 2.0;
+    }
+    if (L.free)
+    {
+      for (int i = 0; i < 3; ++i)
+        sum +=
+            ratio(L.freePosition(error)[i], L.freePosition(y)[i] - p0[i], L.freePosition(y_next)[i] - p1[i],
+                  num.implicit_position_tol) +
+            ratio(L.freeVelocity(error)[i], L.freeVelocity(y)[i], L.freeVelocity(y_next)[i], num.implicit_velocity_tol);
+      count += 6.0;
+    }
   }
   return std::sqrt(sum / count);
 }

@@ -20,10 +20,7 @@ double Simulator::nextStep() const
 
 StepperType Simulator::stepper() const
 {
-  // A parted cable's free end is not in the implicit stepper's linearisation (it takes the tow point's
-  // motion as given): dopri5 from then on.
-  const StepperType configured = model_->numerics().stepper;
-  return parted() && isImplicit(configured) ? StepperType::kDopri5 : configured;
+  return model_->numerics().stepper;
 }
 
 bool Simulator::implicit() const
@@ -31,13 +28,17 @@ bool Simulator::implicit() const
   return isImplicit(stepper());
 }
 
+// (S16) per chain: the whole cable, or a parted cable's vehicle side (its free first joint's acceleration an
+// unknown, (S27)) and the cable left on the ship.
 void Simulator::linearise()
 {
   const StateLayout& L = layout();
   const Eigen::Vector2d winch =
-      winchAccelerationDerivatives(winch_, data_.winch_command, L.cableOut(y_), L.payoutRate(y_));
-  implicit_.linearise(*model_, geometry(), data_, t_, ship_(t_), L.positions(y_), L.velocities(y_), accelerations(),
-                      vehicleSide().terms(), axialMultipliers(), winch.x(), winch.y());
+      !parted() ? winchAccelerationDerivatives(winch_, data_.winch_command, L.cableOut(y_), L.payoutRate(y_))
+                : Eigen::Vector2d::Zero();
+  implicit_.beginLinearisation(chains_.size(), winch.x(), winch.y());
+  for (std::size_t i = 0; i < chains_.size(); ++i)
+    implicit_.lineariseChain(i, chains_[i], *model_, data_, t_, ship_(t_), y_, dydt_);
 }
 
 bool Simulator::stepImplicit(double t_end, double winch_step, StepReport& report)
@@ -56,7 +57,7 @@ bool Simulator::stepImplicit(double t_end, double winch_step, StepReport& report
   const double t_next = clamped ? t_end : t_ + h;
   if (!fixed)
   {
-    const double err = implicitErrorNorm(model_->numerics(), layout(), winch_.enabled, error_, y_, y_next_,
+    const double err = implicitErrorNorm(model_->numerics(), chains_, winch_.enabled, error_, y_, y_next_,
                                          ship_(t_).p_W, ship_(t_next).p_W);
     // (S25): the error estimate goes like h^(embedded order + 1).
     const double grow =

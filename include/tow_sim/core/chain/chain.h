@@ -68,6 +68,11 @@ public:
   const std::vector<double>& axialMultipliers() const { return multipliers_; }
   const std::vector<ElementTerms>& terms() const { return solver_.terms(); }
 
+  // The derivatives of the seabed's force on a free first joint (freeEndContact) in its position [N/m] and
+  // velocity [N s/m], at `end`: zero without a seabed, for the end body alone, or off the bottom.
+  void freeEndContactJacobian(const ChainModel& model, const ShipEndState& end, Eigen::Matrix3d& dF_dx,
+                              Eigen::Matrix3d& dF_dv) const;
+
 private:
   // The seabed's force on a free first joint (the contact of half the first segment's length, as each
   // segment's aft joint carries: ChainModel::forEachContact); zero without a seabed or for the end body alone.

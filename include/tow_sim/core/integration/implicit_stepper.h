@@ -22,9 +22,11 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstddef>
 #include <functional>
 #include <vector>
 
+#include "tow_sim/core/chain/chain.h"
 #include "tow_sim/core/chain/chain_jacobian.h"
 #include "tow_sim/core/chain/chain_solver.h"
 #include "tow_sim/core/chain/chain_state.h"
@@ -52,19 +54,39 @@ public:
   }
   double gamma() const { return gamma_; }
 
-  // The linearisation at a state: `terms`, `multipliers` and accelerations a of a ChainSolver::solve at it
-  // (the projected inertia, the axes, the axial forces), its joints x, v (3 x (nu+1)), the tow point's
-  // motion, and the
-  // winch's rate law's derivatives d(payout acceleration)/d(cable out) [1/s^2] and /d(rate) [1/s].
+  // The linearisation at a state of one chain whose block is StateLayout{joints} (tests): `terms`,
+  // `multipliers` and accelerations a of a ChainSolver::solve at it (the projected inertia, the axes, the
+  // axial forces), its joints x, v (3 x (nu+1)), the tow point's motion, and the winch's rate law's
+  // derivatives d(payout acceleration)/d(cable out) [1/s^2] and /d(rate) [1/s]. The simulator's form is
+  // beginLinearisation and lineariseChain per chain.
   void linearise(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data, double t,
                  const ShipEndState& ship, const Eigen::Ref<const Eigen::Matrix3Xd>& x,
                  const Eigen::Ref<const Eigen::Matrix3Xd>& v, const Eigen::Ref<const Eigen::Matrix3Xd>& a,
                  const std::vector<ElementTerms>& terms, const std::vector<double>& multipliers, double winch_d_length,
                  double winch_d_rate);
+  // The linearisation of `chains` chains, each its own block of the state (a parted cable has two, which
+  // do not act on each other: W is block-diagonal over them), then lineariseChain for each. The winch's
+  // derivatives are those of the block that holds the cable out (the first).
+  void beginLinearisation(std::size_t chains, double winch_d_length, double winch_d_rate);
+  // Chain `index` at `layout` in the state: its first joint `first` (the tow point, or a free end with its
+  // acceleration), x, v, a of its other joints, and its solve's terms and multipliers as linearise(). A free
+  // first joint's acceleration is an unknown of the stage (docs/solver.md (S27)); `first_dF_dx`,
+  // `first_dF_dv` are the derivatives of the force on it from outside (the seabed's; zero otherwise).
+  void lineariseChain(std::size_t index, const StateLayout& layout, const ChainModel& model,
+                      const ChainGeometry& geometry, const ChainData& data, double t, const ShipEndState& first,
+                      const Eigen::Ref<const Eigen::Matrix3Xd>& x, const Eigen::Ref<const Eigen::Matrix3Xd>& v,
+                      const Eigen::Ref<const Eigen::Matrix3Xd>& a, const std::vector<ElementTerms>& terms,
+                      const std::vector<double>& multipliers,
+                      const Eigen::Matrix3d& first_dF_dx = Eigen::Matrix3d::Zero(),
+                      const Eigen::Matrix3d& first_dF_dv = Eigen::Matrix3d::Zero());
+  // The same for the simulator's chain `index` at its state in y (its accelerations dydt, its solve's terms as
+  // last refreshed), the ship's tow point `ship` at t.
+  void lineariseChain(std::size_t index, const Chain& chain, const ChainModel& model, const ChainData& data, double t,
+                      const ShipEndState& ship, const std::vector<double>& y, const std::vector<double>& dydt);
   // The stage matrix for the step h [s] and its matrix pass (after linearise; again after each change of h).
   void factor(double h);
-  // K = (I - gamma h J)^-1 (r + gamma h df/dt-part) for r laid out as StateLayout with as many joints as
-  // the linearisation, the tow point's increments `tow` known (position, velocity: K_t (v, a)).
+  // K = (I - gamma h J)^-1 (r + gamma h df/dt-part) for r laid out as the linearised chains' blocks, the
+  // tow point's increments `tow` known (position, velocity: K_t (v, a)) for the chains that hang from it.
   void solve(const std::vector<double>& r, const TowPointRates& tow, std::vector<double>& K);
 
   // One step of the method `rw` (S15) from (t, y), f0 = f(t, y), the stage matrix factored for h [s]:
@@ -76,14 +98,21 @@ public:
               std::vector<double>& error);
 
   double step() const { return h_; }  // [s] as factored
-  int joints() const { return static_cast<int>(jacobians_.size()); }
 
 private:
-  std::vector<ElementTerms> inertia_;       // M and s at the linearisation (their h, c unused)
-  std::vector<ElementJacobian> jacobians_;  // D and K per element
-  std::vector<ElementTerms> stage_;         // N, and per stage g and c'
-  ChainSweep sweep_;
-  Eigen::Matrix3Xd K_v_;
+  // One chain's part of the stage (S18)-(S19).
+  struct Block
+  {
+    StateLayout layout;
+    std::vector<ElementTerms> inertia;       // M and s at the linearisation (their h, c unused)
+    std::vector<ElementJacobian> jacobians;  // D and K per element
+    std::vector<ElementTerms> stage;         // N, and per stage g and c'
+    ChainSweep sweep;
+    Eigen::Matrix3Xd K_v;
+  };
+  void solveBlock(Block& block, const std::vector<double>& r, const TowPointRates& tow, std::vector<double>& K);
+
+  std::vector<Block> blocks_;
   double h_ = 0.0;
   double gamma_ = kGamma;
   double winch_d_length_ = 0.0, winch_d_rate_ = 0.0;
@@ -91,12 +120,13 @@ private:
   std::vector<double> stage_y_, stage_f_;
 };
 
-// The weighted RMS of an implicit step's error, `error` of the step from y to y_next (accepted when <= 1):
-// each component against atol + rtol |value| (numerics' implicit_*_tol, the larger of the two ends), the
-// positions measured from the tow point (p0 at the start, p1 at the end) so that the norm does not depend
-// on where the world's origin is; the cable out and the payout rate too when `winch`.
-double implicitErrorNorm(const NumericsParams& num, const StateLayout& L, bool winch, const std::vector<double>& error,
-                         const std::vector<double>& y, const std::vector<double>& y_next, const Eigen::Vector3d& p0,
-                         const Eigen::Vector3d& p1);
+// The weighted RMS of an implicit step's error, `error` of the step from y to y_next (accepted when <= 1)
+// over the chains' blocks (S24): each component against atol + rtol |value| (numerics'
+// implicit_*_tol, the larger of the two ends), the positions measured from the tow point (p0 at the start,
+// p1 at the end) so that the norm does not depend on where the world's origin is; the cable out and the
+// payout rate too when `winch` (in the block that holds them); a free first joint's position and velocity.
+double implicitErrorNorm(const NumericsParams& num, const std::vector<Chain>& chains, bool winch,
+                         const std::vector<double>& error, const std::vector<double>& y,
+                         const std::vector<double>& y_next, const Eigen::Vector3d& p0, const Eigen::Vector3d& p1);
 
 }  // namespace tow_sim

@@ -78,7 +78,8 @@ public:
   void restoreState(const SimulatorState& state);
 
   // The cable parted (cable.break_at_breaking_load, or part()): the chain is the vehicle side, from a free
-  // first joint; the winch is stopped, and the steppers are explicit (dopri5; rk4 if configured).
+  // first joint; the winch is stopped; the configured stepper goes on (the implicit one over both chains,
+  // docs/solver.md (S27)).
   bool parted() const { return vehicleSide().freeFirst(); }
   // Where and when it parted at its breaking load (checkBreak; kept until rejoin() or restoreState(), so an
   // advance that throws after it does not lose it). Empty after a part() by hand.
@@ -164,7 +165,7 @@ private:
   // The chain's first joint at (t, y): the ship's tow point, or the free end of a parted cable.
   ShipEndState towPoint(double t, const StateVector& y) const { return vehicleSide().firstJoint(ship_(t), y); }
   void wholeCable();                    // one chain as configured, the cable out as configured, at rest
-  StepperType stepper() const;          // the configured one, explicit once parted
+  StepperType stepper() const;          // the configured one (numerics.stepper)
   void checkBreak(StepReport& report);  // parts the cable where a tension exceeds breaking_load
   // The vehicle side's element lengths for the state y: the first segment's from the cable out and the
   // winch's rate law while it runs (paidOut), as they are otherwise.
