@@ -82,6 +82,7 @@ TEST(CableParting, InVacuumTheCablePartsAtTheTowPointAndFallsAtG)
     EXPECT_LT(after.parting->t, 0.1);
     EXPECT_NEAR(after.parting->tension, top, 1e-6 * top);
     EXPECT_TRUE(run.simulator().parted());
+    EXPECT_EQ(run.simulator().stepper(), stepper);                // no fallback to another stepper once parted
     EXPECT_EQ(after.segments, 10);                                // the whole cable left with the vehicle
     EXPECT_EQ(after.tension_ship, 0.0);                           // the ship feels nothing
     EXPECT_LT(after.tensions.cwiseAbs().maxCoeff(), 1e-6 * top);  // a free fall carries no tension

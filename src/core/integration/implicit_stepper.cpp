@@ -205,7 +205,7 @@ void ImplicitStepper::stages(const RosenbrockTableau& rw, double t, double h, co
     }
 }
 
-// (S24): positions relative to the tow point, velocities as they are.
+// (S24): positions relative to the chain's first joint, velocities as they are.
 double implicitErrorNorm(const NumericsParams& num, const std::vector<Chain>& chains, bool winch,
                          const std::vector<double>& error, const std::vector<double>& y,
                          const std::vector<double>& y_next, const Eigen::Vector3d& p0, const Eigen::Vector3d& p1)
@@ -218,12 +218,16 @@ double implicitErrorNorm(const NumericsParams& num, const std::vector<Chain>& ch
   for (const Chain& chain : chains)
   {
     const StateLayout& L = chain.layout();
+    // Measured from the chain's first joint: the tow point, or a parted vehicle side's free end (which drifts
+    // away from the ship without limit), whose own position error is taken against the absolute tolerance.
+    const Eigen::Vector3d q0 = L.free ? Eigen::Vector3d(L.freePosition(y)) : p0;
+    const Eigen::Vector3d q1 = L.free ? Eigen::Vector3d(L.freePosition(y_next)) : p1;
     const auto e_x = L.positions(error), e_v = L.velocities(error);
     const auto x0 = L.positions(y), x1 = L.positions(y_next);
     const auto v0 = L.velocities(y), v1 = L.velocities(y_next);
     for (int j = 0; j < L.joints; ++j)
       for (int i = 0; i < 3; ++i)
-        sum += ratio(e_x(i, j), x0(i, j) - p0[i], x1(i, j) - p1[i], num.implicit_position_tol) +
+        sum += ratio(e_x(i, j), x0(i, j) - q0[i], x1(i, j) - q1[i], num.implicit_position_tol) +
                ratio(e_v(i, j), v0(i, j), v1(i, j), num.implicit_velocity_tol);
     count += 6.0 * L.joints;
     if (L.winch && winch)
@@ -236,8 +240,7 @@ double implicitErrorNorm(const NumericsParams& num, const std::vector<Chain>& ch
     {
       for (int i = 0; i < 3; ++i)
         sum +=
-            ratio(L.freePosition(error)[i], L.freePosition(y)[i] - p0[i], L.freePosition(y_next)[i] - p1[i],
-                  num.implicit_position_tol) +
+            ratio(L.freePosition(error)[i], 0.0, 0.0, num.implicit_position_tol) +
             ratio(L.freeVelocity(error)[i], L.freeVelocity(y)[i], L.freeVelocity(y_next)[i], num.implicit_velocity_tol);
       count += 6.0;
     }

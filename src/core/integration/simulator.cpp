@@ -167,7 +167,7 @@ StepReport Simulator::advanceTo(double t_end)
                                 : std::numeric_limits<double>::infinity();
   StepReport report;
   while (t_end - t_ > 1e-12 * std::max(1.0, std::abs(t_end)))
-    stepOnce(t_end, winch_step, report);
+    stepOnce(t_end, parted() ? std::numeric_limits<double>::infinity() : winch_step, report);  // parted: stopped
   return report;
 }
 

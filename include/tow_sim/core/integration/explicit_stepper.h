@@ -1,5 +1,5 @@
-// Boost.Odeint's explicit steppers for the Simulator (numerics.stepper rk4 and dopri5; dopri5 also for a
-// parted cable): the one place that includes Odeint. Each call takes the system as dydt = f(y, t) and the
+// Boost.Odeint's explicit steppers for the Simulator (numerics.stepper rk4 and dopri5): the one place that
+// includes Odeint. Each call takes the system as dydt = f(y, t) and the
 // state vector as StateLayout lays it out.
 #pragma once
 

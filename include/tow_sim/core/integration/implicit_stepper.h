@@ -124,7 +124,8 @@ private:
 // over the chains' blocks (S24): each component against atol + rtol |value| (numerics'
 // implicit_*_tol, the larger of the two ends), the positions measured from the tow point (p0 at the start,
 // p1 at the end) so that the norm does not depend on where the world's origin is; the cable out and the
-// payout rate too when `winch` (in the block that holds them); a free first joint's position and velocity.
+// payout rate too when `winch` (in the block that holds them); a free first joint's position (absolute) and
+// velocity, the positions of its chain measured from it.
 double implicitErrorNorm(const NumericsParams& num, const std::vector<Chain>& chains, bool winch,
                          const std::vector<double>& error, const std::vector<double>& y,
                          const std::vector<double>& y_next, const Eigen::Vector3d& p0, const Eigen::Vector3d& p1);

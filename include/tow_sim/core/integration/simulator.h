@@ -81,6 +81,8 @@ public:
   // first joint; the winch is stopped; the configured stepper goes on (the implicit one over both chains,
   // docs/solver.md (S27)).
   bool parted() const { return vehicleSide().freeFirst(); }
+  // The stepper that takes the steps: numerics.stepper, parted or not.
+  StepperType stepper() const;
   // Where and when it parted at its breaking load (checkBreak; kept until rejoin() or restoreState(), so an
   // advance that throws after it does not lose it). Empty after a part() by hand.
   const std::optional<PartingEvent>& partingEvent() const { return parting_event_; }
@@ -165,7 +167,6 @@ private:
   // The chain's first joint at (t, y): the ship's tow point, or the free end of a parted cable.
   ShipEndState towPoint(double t, const StateVector& y) const { return vehicleSide().firstJoint(ship_(t), y); }
   void wholeCable();                    // one chain as configured, the cable out as configured, at rest
-  StepperType stepper() const;          // the configured one (numerics.stepper)
   void checkBreak(StepReport& report);  // parts the cable where a tension exceeds breaking_load
   // The vehicle side's element lengths for the state y: the first segment's from the cable out and the
   // winch's rate law while it runs (paidOut), as they are otherwise.
