@@ -122,15 +122,24 @@ ElementKinematics Chain::elementKinematics(int e, const ShipEndState& ship, cons
   return ElementKinematics::fromJoints(x_f, x.col(e), v_f, v.col(e));
 }
 
-Eigen::Vector3d Chain::freeEndContact(const ChainModel& model, const ChainGeometry& geometry,
-                                      const ShipEndState& end) const
+const Seabed* Chain::freeEndPenalty(const ChainModel& model, const ChainGeometry& geometry, double& stiffness,
+                                    double& damping) const
 {
   const Seabed* bottom = model.seabed();
   if (!bottom || geometry.segments == 0)
-    return Eigen::Vector3d::Zero();
+    return nullptr;
   const double carried = 0.5 * geometry.elementLength(0);  // as each segment's aft joint (ChainModel::forEachContact)
-  return bottom->contactForce(end.p_W, end.v_W, bottom->params().stiffness * carried,
-                              bottom->params().damping * carried);
+  stiffness = bottom->params().stiffness * carried;
+  damping = bottom->params().damping * carried;
+  return bottom;
+}
+
+Eigen::Vector3d Chain::freeEndContact(const ChainModel& model, const ChainGeometry& geometry,
+                                      const ShipEndState& end) const
+{
+  double stiffness = 0.0, damping = 0.0;
+  const Seabed* bottom = freeEndPenalty(model, geometry, stiffness, damping);
+  return bottom ? bottom->contactForce(end.p_W, end.v_W, stiffness, damping) : Eigen::Vector3d::Zero();
 }
 
 void Chain::freeEndContactJacobian(const ChainModel& model, const ShipEndState& end, Eigen::Matrix3d& dF_dx,
@@ -138,12 +147,9 @@ void Chain::freeEndContactJacobian(const ChainModel& model, const ShipEndState& 
 {
   dF_dx.setZero();
   dF_dv.setZero();
-  const Seabed* bottom = model.seabed();
-  if (!bottom || geometry_.segments == 0)
-    return;
-  const double carried = 0.5 * geometry_.elementLength(0);  // as freeEndContact
-  bottom->contactJacobian(end.p_W, end.v_W, bottom->params().stiffness * carried, bottom->params().damping * carried,
-                          dF_dx, dF_dv);
+  double stiffness = 0.0, damping = 0.0;
+  if (const Seabed* bottom = freeEndPenalty(model, geometry_, stiffness, damping))
+    bottom->contactJacobian(end.p_W, end.v_W, stiffness, damping, dF_dx, dF_dv);
 }
 
 }  // namespace tow_sim

@@ -37,8 +37,9 @@ void Simulator::linearise()
       !parted() ? winchAccelerationDerivatives(winch_, data_.winch_command, L.cableOut(y_), L.payoutRate(y_))
                 : Eigen::Vector2d::Zero();
   implicit_.beginLinearisation(chains_.size(), winch.x(), winch.y());
+  const ShipEndState ship = ship_(t_);
   for (std::size_t i = 0; i < chains_.size(); ++i)
-    implicit_.lineariseChain(i, chains_[i], *model_, data_, t_, ship_(t_), y_, dydt_);
+    implicit_.lineariseChain(i, chains_[i], *model_, data_, t_, ship, y_, dydt_);
 }
 
 bool Simulator::stepImplicit(double t_end, double winch_step, StepReport& report)

@@ -77,6 +77,10 @@ private:
   // The seabed's force on a free first joint (the contact of half the first segment's length, as each
   // segment's aft joint carries: ChainModel::forEachContact); zero without a seabed or for the end body alone.
   Eigen::Vector3d freeEndContact(const ChainModel& model, const ChainGeometry& geometry, const ShipEndState& end) const;
+  // The seabed and its penalty stiffness [N/m] and damping [N s/m] on a free first joint (half the first
+  // segment's length in contact); null without a seabed or for the end body alone.
+  const Seabed* freeEndPenalty(const ChainModel& model, const ChainGeometry& geometry, double& stiffness,
+                               double& damping) const;
   // The first element whose length is kept: an elastic cable's first element after its segments.
   int firstKeptElement(const ChainModel& model) const { return model.elastic() ? geometry_.segments : 0; }
 

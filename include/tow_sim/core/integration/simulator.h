@@ -78,8 +78,8 @@ public:
   void restoreState(const SimulatorState& state);
 
   // The cable parted (cable.break_at_breaking_load, or part()): the chain is the vehicle side, from a free
-  // first joint; the winch is stopped; the configured stepper goes on (the implicit one over both chains,
-  // docs/solver.md (S27)).
+  // first joint; the winch is stopped; the configured stepper goes on (the implicit one over the vehicle
+  // side and any cable left on the ship, docs/solver.md (S27)).
   bool parted() const { return vehicleSide().freeFirst(); }
   // The stepper that takes the steps: numerics.stepper, parted or not.
   StepperType stepper() const;
