@@ -17,7 +17,7 @@ import sys
 
 LIBRARIES = ["core", "config", "scenario", "ros"]
 LAYERS = [
-    ["constants", "geometry", "param_table", "survey_measurement", "layback_rules", "survey_row_queue"],
+    ["constants", "geometry", "param_table", "cable_loading", "survey_measurement", "layback_rules", "survey_row_queue"],
     ["waves", "params", "param_tables", "numeric_csv", "tension_limits", "measurement_csv"],
     ["fins", "seabed", "element", "ship_response"],
     ["added_mass", "vehicle"],
@@ -32,6 +32,7 @@ LAYERS = [
 LAYER = {name: i for i, names in enumerate(LAYERS) for name in names}
 # Core sources that implement a header of another name.
 SOURCES = {
+    "faired_loads": "element",
     "simulator_implicit": "simulator",
     "simulator_parting": "simulator",
     "simulator_state": "simulator",

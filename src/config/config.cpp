@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <memory>
 #include <stdexcept>
 #include <vector>
 
@@ -35,6 +36,26 @@ void readCurrentProfile(Section& s, Environment& e)
   }
 }
 
+// cable.loading: "bare" or {angles, normal, tangential, lift}; left out, the level above's (`cable`).
+void readLoading(Section& s, CableParams& c)
+{
+  if (!s.has("loading"))
+    return;
+  if (s.isScalar("loading"))
+  {
+    const std::string text = s.text("loading", "bare");
+    if (text != "bare")
+      fail(s.path("loading"), "must be bare or a mapping {angles, normal, tangential, lift}; got '" + text + "'");
+    c.loading.reset();
+    return;
+  }
+  Section table = s.child("loading");
+  std::vector<double> angles = table.list("angles"), normal = table.list("normal"),
+                      tangential = table.list("tangential"), lift = table.list("lift");
+  table.finish();
+  c.loading = std::make_shared<const CableLoading>(angles, normal, tangential, lift, table.name());
+}
+
 // cable.sections: each entry the cable's keys, those left out the cable level's (read before); length and
 // segments required. The cable level's length and segments, when left out, are the sections' sums.
 void readSections(Section& s, SimulationConfig& c)
@@ -57,6 +78,7 @@ void readSections(Section& s, SimulationConfig& c)
       if (c.cable.elastic())
         fail(item.path("depressor"), "is a rigid element: not in an elastic cable (cable.axial_stiffness set)");
       section.bending_stiffness = 0.0;  // universal joints at both ends
+      section.loading.reset();          // its own body's drag
       section.strumming = StrummingLaw::kNone;
       section.diameter = std::min(1.0, section.depressor->diameter);  // drawn at its body's width
       validate(section, item.name());
@@ -75,6 +97,7 @@ void readSections(Section& s, SimulationConfig& c)
     CableParams section = c.cable;
     ParamReader r(item);
     r.read(cableParams(), section);
+    readLoading(r.at(""), section);
     r.finish();
     validate(section, item.name());
     c.sections.push_back(section);
@@ -243,6 +266,7 @@ SimulationConfig loadConfigUnguarded(const YAML::Node& root, const std::string& 
   ParamReader cable = section("cable"), environment = section("environment"), numerics = section("numerics"),
               vehicle = section("vehicle"), winch = section("winch"), seabed = section("seabed");
   cable.read(cableParams(), c.cable);
+  readLoading(cable.at(""), c.cable);
   readSections(cable.at(""), c);
   readBodies(cable.at(""), c);
   environment.read(environmentParams(), c.environment);
@@ -323,10 +347,24 @@ SimulationConfig loadConfigFile(const std::string& path)
   return config;
 }
 
+YAML::Node loadingYaml(const CableParams& c)
+{
+  if (!c.loading)
+    return YAML::Node("bare");
+  YAML::Node n;
+  n["angles"] = c.loading->angles();
+  n["normal"] = c.loading->normal();
+  n["tangential"] = c.loading->tangential();
+  n["lift"] = c.loading->lift();
+  return n;
+}
+
 YAML::Node toYaml(const SimulationConfig& c)
 {
   YAML::Node root;
   detail::writeParams(root["cable"], cableParams(), c.cable);
+  if (c.cable.loading)  // written only where set, so that the configurations before it read the same
+    root["cable"]["loading"] = loadingYaml(c.cable);
   root["cable"]["sections"] = YAML::Node(YAML::NodeType::Sequence);
   for (const CableParams& section : c.sections)
   {
@@ -338,6 +376,8 @@ YAML::Node toYaml(const SimulationConfig& c)
       continue;
     }
     detail::writeParams(item, cableParams(), section);
+    if (section.loading || c.cable.loading)
+      item["loading"] = loadingYaml(section);
     for (const char* key : { "safe_working_load", "breaking_load", "break_at_breaking_load" })
       item.remove(key);
     root["cable"]["sections"].push_back(item);

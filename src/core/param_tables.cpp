@@ -32,6 +32,13 @@ ParamTable<CableParams> cableMaterialParams()
       .choice("tangential_drag_model", &C::tangential_drag_model,
               { { "pode", TangentialDragModel::kPode }, { "quadratic", TangentialDragModel::kQuadratic } },
               "pode (the report's): C₁ d ‖u‖² along s against the tangential flow; quadratic: −C₁ d |u·s|(u·s) s")
+      .custom("loading", "rad, -", "bare",
+              "angles from 0 to π/2, strictly increasing; one finite value per angle in each list, within "
+              "[−100, 100]; normal, tangential ≥ 0; normal and lift 0 at angle 0; not with strumming",
+              "bare (the report's Pode loading, from the drag coefficients above) or a faired cable's loading "
+              "functions {angles: [rad], normal: […], tangential: […], lift: […]}: the loads ½ρ D d C(φ) |u|² "
+              "at the angle φ between the cable and the flow, interpolated linearly (lift may be left out: 0); "
+              "physics.md §11, (P56)")
       .optionalNumber("safe_working_load", &C::safe_working_load, "N", 0.0, 1e9, kOpen, "unset",
                       "the node's diagnostics WARN while a tension exceeds it")
       .optionalNumber("breaking_load", &C::breaking_load, "N", 0.0, 1e9, kOpen, "unset",

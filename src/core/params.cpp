@@ -157,6 +157,9 @@ void validate(const CableParams& c, const std::string& p)
   }
   if (!c.elastic() && c.axial_damping != 0.0)
     requireInRange(paramName(p, "axial_damping"), c.axial_damping, 0.0, 0.0, "[N s] (0 unless axial_stiffness is set)");
+  if (c.loading && c.strumming != StrummingLaw::kNone)
+    throw std::invalid_argument(paramName(p, "strumming") +
+                                ": must be none with a faired cable's loading (fairing stops the strumming)");
 }
 
 void validate(const EndElementParams& e, const std::string& p)

@@ -111,6 +111,8 @@ public:
       fail(path(key), "must be a string");
     return node_[key].as<std::string>();
   }
+  // True when the key is set to a plain value (not a list or mapping).
+  bool isScalar(const std::string& key) { return has(key) && node_[key].IsScalar(); }
   std::vector<double> list(const std::string& key)
   {
     std::vector<double> out;

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "tow_sim/core/cable_loading.h"
 #include "tow_sim/core/environment/waves.h"
 #include "tow_sim/core/param_table.h"
 
@@ -116,6 +117,9 @@ struct CableParams
   std::optional<double> c2;                   // [N s^2/m^3] C2 given directly (overrides C_dn), >= 0
   double added_mass_coefficient = 1.0;        // [-] C_a, >= 0 .. 10 (e = C_a rho pi D^2/4 d)
   TangentialDragModel tangential_drag_model = TangentialDragModel::kPode;
+  // A faired cable's loading functions (physics.md §11, (P56)) in place of the drag coefficients above; unset,
+  // the bare cable's Pode loading (the report's). Shared and constant: copies of the cable share it.
+  std::shared_ptr<const CableLoading> loading;
   std::optional<double> safe_working_load;  // [N] the node warns above it (unset: no limit), > 0 .. 1e9
   std::optional<double> breaking_load;      // [N] the node reports an error above it, >= safe_working_load .. 1e9
   // The cable parts at the joint where a tension first exceeds breaking_load (needs it): the part on the

@@ -73,7 +73,8 @@ void describeSegments(const ChainModel& model, const ChainGeometry& geometry, do
     seg.span = span;
     seg.arc_length = along + 0.5 * d;
     seg.depth = -0.5 * (x_f.z() + x_a.z());
-    seg.normal_speed = d > 0.0 && !depressor ? (u - u.dot(s) * s).norm() : 0.0;
+    // A faired segment sheds no vortices (its fairing is there to stop them): it strums not, but rings.
+    seg.normal_speed = d > 0.0 && !depressor && !cable.loading ? (u - u.dot(s) * s).norm() : 0.0;
     seg.shedding_frequency = cable.strouhal_number * seg.normal_speed / cable.diameter;
     // The tension at its aft end: the next element's, and a point body's load there taken by this segment (the
     // body at rest relative to the ship: T_aft = T_{e+1} - F_body).

@@ -25,8 +25,8 @@ void segmentJacobian(const ChainModel& model, int e, double t, const ElementKine
   const ElementKinematics kw = rate != 0.0 ? ElementKinematics::fromJoints(k.x_f, k.x_a, k.v_f + rate * k.s, k.v_a) : k;
   // The waves' velocity and acceleration vary along the wave (k a omega per metre): left out of J, which
   // a W-method may approximate (their forcing is not stiff).
-  const VelocityForceJacobian vf = velocityForceJacobian(kw, data.environment.flowOver(kw.x_f, kw.x_a, t).velocity_W,
-                                                         seg.c1, seg.c2, seg.tangential_model, seg.smoothing_speed);
+  const VelocityForceJacobian vf =
+      segmentVelocityForceJacobian(seg, kw, data.environment.flowOver(kw.x_f, kw.x_a, t).velocity_W);
   // u = (v_f + v_a)/2 - current, dv = v_a - v_f.
   Matrix6d dw_dv;
   dw_dv << 0.5 * vf.force_u, 0.5 * vf.force_u, 0.5 * vf.moment_u - vf.moment_dv, 0.5 * vf.moment_u + vf.moment_dv;

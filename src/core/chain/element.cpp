@@ -46,6 +46,13 @@ CableSegmentModel CableSegmentModel::fromParams(const CableParams& cable, const 
   m.added_mass = cable.added_mass_coefficient * env.water_density * area * m.length;
   m.displaced_mass = env.water_density * area * m.length;
   m.tangential_model = cable.tangential_drag_model;
+  if (cable.loading)
+  {
+    m.loading = cable.loading.get();
+    m.loading_scale = wet * 0.5 * env.water_density * cable.diameter;
+    m.c1 = m.loading_scale * cable.loading->tangential().front();
+    m.c2 = m.loading_scale * cable.loading->normal().back();
+  }
   m.smoothing_speed = numerics.tangential_smoothing_speed;
   m.stretches = cable.elastic();
   return m;
@@ -174,8 +181,7 @@ void cableSegmentDynamics(const CableSegmentModel& seg, double t, const ElementK
   out.mass.bottomRightCorner<3, 3>() = (seg.mass * d * d / 12.0) * I3;
 
   const WaveKinematics flow = env.flowOver(k.x_f, k.x_a, t);
-  const VelocityForces vf =
-      velocityForces(k, flow.velocity_W, seg.c1, seg.c2, seg.tangential_model, seg.smoothing_speed);
+  const VelocityForces vf = segmentVelocityForces(seg, k, flow.velocity_W);
   out.wrench.head<3>() = vf.force - seg.net_weight * Eigen::Vector3d::UnitZ();
   out.wrench.tail<3>() = vf.moment;
   // The waves' acceleration a_w (physics.md §9, Morison): Froude-Krylov rho A d a_w plus the added mass

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <stdexcept>
+#include <vector>
 
 namespace tow_sim
 {
@@ -20,6 +22,8 @@ SimulationConfig withDragScale(SimulationConfig config, double k)
       *c.c1 *= k;
     if (c.c2)
       *c.c2 *= k;
+    if (c.loading)
+      c.loading = std::make_shared<const CableLoading>(c.loading->scaled(k, "the loading table times the drag scale"));
   };
   scale(config.cable);
   for (CableParams& s : config.sections)
@@ -37,6 +41,11 @@ double largestLnK(const SimulationConfig& config)
       largest = std::min(largest, std::log(10.0 / c.normal_drag_coefficient));
     if (c.tangential_drag_coefficient > 0.0)
       largest = std::min(largest, std::log(1.0 / c.tangential_drag_coefficient));
+    if (c.loading)  // a faired section's coefficients stay within CableLoading's 100
+      for (const std::vector<double>* v : { &c.loading->normal(), &c.loading->tangential(), &c.loading->lift() })
+        for (double x : *v)
+          if (x != 0.0)
+            largest = std::min(largest, std::log(100.0 / std::abs(x)));
   }
   return largest;
 }

@@ -50,9 +50,16 @@ struct CableSegmentModel
   double added_mass = 0.0;      // [kg] e_lambda, Walton-Polachek, acts on the normal acceleration
   double displaced_mass = 0.0;  // [kg] rho (pi D^2/4) d: the Froude-Krylov force of the waves' acceleration
   TangentialDragModel tangential_model = TangentialDragModel::kPode;
+  // A faired cable's loading functions (null: bare, c1 and c2); with them c1 = 1/2 rho D C_t(0) and
+  // c2 = 1/2 rho D C_n(pi/2), the latter for the rotation-drag moment M_V alone. Points to the CableParams'
+  // `loading` it was made from (shared and constant: valid while any copy of those parameters lives, as the
+  // chain model's own copy does); a plain pointer, so that the per-segment copies cost nothing more.
+  const CableLoading* loading = nullptr;
+  double loading_scale = 0.0;     // [kg/m^2] 1/2 rho D (0 in vacuum): the faired loads per metre over |u|^2 C
   double smoothing_speed = 0.01;  // [m/s] width of the smooth sign of u.s (Pode model)
   bool stretches = false;         // elastic cable: the rotary inertia m d^2/12 at the actual length d
 
+  // `loading` points into cable.loading: keep a copy of `cable` (or of its loading) alive while it is used.
   static CableSegmentModel fromParams(const CableParams& cable, const Environment& env, const NumericsParams& numerics);
 };
 
@@ -82,6 +89,24 @@ struct VelocityForceJacobian
 };
 VelocityForceJacobian velocityForceJacobian(const ElementKinematics& k, const Eigen::Vector3d& current_W, double c1,
                                             double c2, TangentialDragModel model, double smoothing_speed);
+
+// The force [N] of a faired cable's loading functions on a segment with unit axis s moving at u [m/s] through
+// the water (physics.md §11, (P56)): scale |u|^2 (-C_n(phi) n - C_t(phi) sg(u.s) s + C_l(phi) s x n), scale =
+// 1/2 rho D d, n = u_n / |u_n| the cross-flow's direction, phi = atan2(|u_n|, |u.s|), sg the Pode model's
+// smooth sign over smoothing_speed. The normal load and the lift are smooth where u runs along s (C_n(0) =
+// C_l(0) = 0); the tangential load has a corner there unless C_t's first slope is 0.
+Eigen::Vector3d fairedForce(const CableLoading& loading, double scale, const Eigen::Vector3d& s,
+                            const Eigen::Vector3d& u, double smoothing_speed);
+// Its derivative d force / d u [N s/m], s held fixed.
+Eigen::Matrix3d fairedForceJacobian(const CableLoading& loading, double scale, const Eigen::Vector3d& s,
+                                    const Eigen::Vector3d& u, double smoothing_speed);
+
+// A cable segment's velocity forces in the flow flow_W [m/s] at its centre: velocityForces with its c1, c2
+// when bare; with a faired loading, fairedForce and the rotation-drag moment of c2. And their derivatives.
+VelocityForces segmentVelocityForces(const CableSegmentModel& seg, const ElementKinematics& k,
+                                     const Eigen::Vector3d& flow_W);
+VelocityForceJacobian segmentVelocityForceJacobian(const CableSegmentModel& seg, const ElementKinematics& k,
+                                                   const Eigen::Vector3d& flow_W);
 
 // The joint accelerations to the CG acceleration and angular acceleration of an element with axis s,
 // length d and CG fraction gamma (docs/solver.md (S1)): [a_G; dw/dt] = J_f a_f + J_a a_a. Returns
