@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# `make test`: every stage runs even when an earlier one failed (the size, layer and format checks, the test build,
-# run_tests, the install space, the sanitizers, fuzzing), its exit status is recorded, and
+# `make test`: every stage runs even when an earlier one failed (the size, layer, package and format checks, the test
+# build, run_tests, the install space, the sanitizers, fuzzing), its exit status is recorded, and
 # scripts/test_summary.py gives the verdict over all of them (the expected results of every suite
 # included, so a test that never ran is a failure). Called by the Makefile with WS, REPO, JOBS,
 # CATKIN_ARGS and FUZZ_SECONDS in the environment.
@@ -30,9 +30,10 @@ run_tests() {
   return $status
 }
 
-# The style guide's limits and the committed format, on the sources (not the build).
+# The style guide's limits, package.xml against the code and the committed format, on the sources (not the build).
 stage "size limits (scripts/check_sizes.py)" /usr/bin/python3 "$REPO/scripts/check_sizes.py" "$REPO"
 stage "layers (scripts/check_layers.py)" /usr/bin/python3 "$REPO/scripts/check_layers.py" "$REPO"
+stage "package dependencies (scripts/check_package.py)" /usr/bin/python3 "$REPO/scripts/check_package.py" "$REPO"
 stage "clang-format (.clang-format)" bash -c "cd '$REPO' && clang-format --dry-run -Werror \$(find src include tools test bench fuzz \( -name '*.cpp' -o -name '*.h' \))"
 
 cd "$WS" && rm -rf build/test_results

@@ -123,7 +123,7 @@ def main(argv):
         total.problems += tally.problems
     if args.stages:
         tally = count_stages(args.stages)
-        lines.append(f"  stages (size limits, layers, format, build, run_tests, install space, sanitizers, fuzzing: exit status): "
+        lines.append(f"  stages (size limits, layers, package, format, build, run_tests, install space, sanitizers, fuzzing: exit status): "
                      f"{tally.passed} passed, {tally.failed} failed")
         total.passed += tally.passed
         total.failed += tally.failed
