@@ -12,8 +12,8 @@ namespace
 using Matrix63d = Eigen::Matrix<double, 6, 3>;
 using Matrix36d = Eigen::Matrix<double, 3, 6>;
 
-// Cable segment e: d w / d(v_f, v_a) and d w / d(x_f, x_a) of its wrench at the CG (the centre), then
-// projected with [J_f J_a]^T.
+// (S16) for cable segment e: d w / d(v_f, v_a) and d w / d(x_f, x_a) of its wrench w at the CG (the centre,
+// vartheta = 1/2), then projected with [J_f J_a]^T as (S5) projects w: out.dh_dv is D, out.dh_dx is K.
 void segmentJacobian(const ChainModel& model, int e, double t, const ElementKinematics& k,
                      const ChainGeometry& geometry, const ChainData& data, ElementJacobian& out)
 {
@@ -65,23 +65,25 @@ void segmentJacobian(const ChainModel& model, int e, double t, const ElementKine
                            dw_dx += arm * df_dp * at;
                          });
   }
-  // (S16): D = d(h_f, h_a)/d(v_f, v_a), K = d(h_f, h_a)/d(x_f, x_a), the wrench's derivatives projected as (S5).
+  // (S16): D = d(w_f, w_a)/d(v_f, v_a), K = d(w_f, w_a)/d(x_f, x_a), the wrench's derivatives projected as (S5).
   const Matrix6d J = jointMap(k.s, k.length, 0.5);
   out.dh_dv = J.transpose() * dw_dv;
   out.dh_dx = J.transpose() * dw_dx;
   out.dh_dv.bottomRightCorner<3, 3>() += contact_v;
   out.dh_dx.bottomRightCorner<3, 3>() += contact_p;
-  if (const JointBody* point = model.bodyAft(e, geometry))  // its drag on the aft joint (S23)
+  if (const JointBody* point = model.bodyAft(e, geometry))  // its drag on the aft joint (S23): D_aa
     out.dh_dv.bottomRightCorner<3, 3>() += point->forceVelocityJacobian(data.environment, t, k.x_a, k.v_a);
 }
 
-// The end body: central differences of its projected loads over x_f, x_a, v_f, v_a.
+// (S16) for the end body: central differences of its projected loads w_f, w_a over x_f, x_a (K) and v_f, v_a
+// (D), less its projected inertia's force at the state's accelerations (its turning inertia -dM/dx a).
 void endBodyJacobian(const ChainModel& model, int e, double t, const ElementKinematics& k,
                      const ChainGeometry& geometry, const ChainData& data, const Vector6d* accelerations,
                      ElementJacobian& out)
 {
   BodyDynamics body;
-  // The projected loads less the projected inertia's force at the state's accelerations, J^T (w - M_b J a).
+  // The projected loads less the projected inertia's force at the state's accelerations, J^T (w - M_b J a)
+  // (M_b: the body's M of (S2); J = [J_f J_a] of (S1)).
   auto loads = [&](const ElementKinematics& kk) -> Vector6d
   {
     model.elementDynamics(e, t, kk, geometry, data, body);
@@ -105,11 +107,12 @@ void endBodyJacobian(const ChainModel& model, int e, double t, const ElementKine
     component_of[j % 3] = saved - step;
     const Vector6d minus = loads(ElementKinematics::fromJoints(joint[0], joint[1], joint[2], joint[3]));
     component_of[j % 3] = saved;
-    (position ? out.dh_dx : out.dh_dv).col(j % 6) = (plus - minus) / (2.0 * step);
+    (position ? out.dh_dx : out.dh_dv).col(j % 6) = (plus - minus) / (2.0 * step);  // a column of K or D
   }
 }
 }  // namespace
 
+// (S16): the geometric stiffness of the multiplier mu (S5a) in K, pattern (-, +; +, -) over (forward, aft).
 void addGeometricStiffness(const ElementKinematics& k, double mu, ElementJacobian& out)
 {
   // The axial force (-mu s on the forward joint, +mu s on the aft one) turns with s = (x_a - x_f)/d:
@@ -122,18 +125,21 @@ void addGeometricStiffness(const ElementKinematics& k, double mu, ElementJacobia
   out.dh_dx.bottomRightCorner<3, 3>() -= G;
 }
 
+// (S16) for an elastic segment (docs/solver.md §8): the derivatives of (S20)'s T s in K and D.
 void addAxialStiffness(const CableParams& cable, double rest_length, const ElementKinematics& k, ElementJacobian& out)
 {
-  // The elastic segment's tension T = max(0, EA eps + c deps/dt) on its joints (+T s forward, -T s aft)
-  // through its length and stretch rate along s (the axis held fixed): EA/d0 and c/d0 on s s^T, while taut.
+  // The elastic segment's tension T = max(0, EA eps + C deps/dt) (S20) on its joints (+T s forward, -T s aft)
+  // through its length and stretch rate along s (the axis held fixed): EA/d0 and C/d0 on s s^T, while taut
+  // (C, the axial damping, is cable.axial_damping).
   const double rate = k.s.dot(k.v_a - k.v_f);
   if (cable.axialTension(k.length, rate, rest_length) <= 0.0)
     return;
   const Eigen::Matrix3d ss = k.s * k.s.transpose();
   // The stretch rate s.(v_a - v_f) turns with the axis too: d(s.dv)/dx_a = ((I - s s^T) dv)^T / d. In a turn,
   // where the segments rotate, that term of the damping dominates K (bench_jacobian: without it J's position
-  // block was 97 % off on the turn with c = 1e6 N s, 5 % with c = 0).
+  // block was 97 % off on the turn with C = 1e6 N s, 5 % with C = 0).
   const Eigen::Vector3d dv = k.v_a - k.v_f;
+  // Kx: EA/d0 s s^T + C/(d0 d) s ((I - s s^T) dv)^T, the 3 x 3 block of K; Dv: C/d0 s s^T, that of D.
   const Eigen::Matrix3d Kx = (*cable.axial_stiffness / rest_length) * ss +
                              (cable.axial_damping / (rest_length * k.length)) * k.s * (dv - rate * k.s).transpose();
   const Eigen::Matrix3d Dv = (cable.axial_damping / rest_length) * ss;
@@ -147,6 +153,9 @@ void addAxialStiffness(const CableParams& cable, double rest_length, const Eleme
   }
 }
 
+// (S16), bending (docs/solver.md §11): the Gauss-Newton Hessian kappa_b B^T B of the springs at segment e's two
+// joints in its K. Here kappa (Spring::kappa) is kappa_b, the spring's stiffness (physics.md (P48)), not the
+// regularisation kappa of (S9).
 void addBendingStiffness(const ChainModel& model, const ChainGeometry& geometry, const Eigen::Vector3d& first,
                          const Eigen::Ref<const Eigen::Matrix3Xd>& x, int e, ElementJacobian& out)
 {
@@ -191,6 +200,8 @@ void addBendingStiffness(const ChainModel& model, const ChainGeometry& geometry,
   }
 }
 
+// (S16) for element e: D (out.dh_dv) and K (out.dh_dx) of its projected loads, with the geometric stiffness of mu
+// and, for an elastic segment, its axial spring and damping (§8).
 void elementJacobian(const ChainModel& model, int e, double t, const ElementKinematics& k,
                      const ChainGeometry& geometry, const ChainData& data, double mu, ElementJacobian& out,
                      const Vector6d* accelerations)

@@ -5,6 +5,7 @@
 
 namespace tow_sim
 {
+// (S16)-(S17) for one chain at the tow point: beginLinearisation and lineariseChain with a single block.
 void ImplicitStepper::linearise(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data, double t,
                                 const ShipEndState& ship, const Eigen::Ref<const Eigen::Matrix3Xd>& x,
                                 const Eigen::Ref<const Eigen::Matrix3Xd>& v,
@@ -16,6 +17,8 @@ void ImplicitStepper::linearise(const ChainModel& model, const ChainGeometry& ge
                  multipliers);
 }
 
+// One block of W per chain (W is block-diagonal over them, docs/solver.md §9); the winch's dL''/dL and
+// dL''/dL' of its 2 x 2 block (§7).
 void ImplicitStepper::beginLinearisation(std::size_t chains, double winch_d_length, double winch_d_rate)
 {
   blocks_.resize(chains);
@@ -24,8 +27,9 @@ void ImplicitStepper::beginLinearisation(std::size_t chains, double winch_d_leng
   h_ = 0.0;  // factor() must follow
 }
 
-// (S16) per element; for a free first joint (S27) the force on it from outside as a load on the first
-// element's forward joint.
+// (S16) per element: D = dh_dv and K = dh_dx, the derivatives of the projected loads w_f, w_a; M_XY and the
+// axes s frozen at this state (S17). For a free first joint (S27) the force on it from outside as a load on
+// the first element's forward joint.
 void ImplicitStepper::lineariseChain(std::size_t index, const StateLayout& layout, const ChainModel& model,
                                      const ChainGeometry& geometry, const ChainData& data, double t,
                                      const ShipEndState& first, const Eigen::Ref<const Eigen::Matrix3Xd>& x,
@@ -48,15 +52,18 @@ void ImplicitStepper::lineariseChain(std::size_t index, const StateLayout& layou
     const ElementKinematics k = ElementKinematics::fromJoints(x_f, x.col(e), v_f, v.col(e));
     Vector6d a_joints;
     a_joints << (e == 0 ? first.a_W : Eigen::Vector3d(a.col(e - 1))), a.col(e);
+    // (S16): the loads' D and K, with the geometric stiffness of the multiplier mu (and, elastic, of T: §8).
     ElementJacobian& jacobian = block.jacobians[i];
     elementJacobian(model, e, t, k, geometry, data, multipliers[i], jacobian, &a_joints);
     if (model.bends())
-      addBendingStiffness(model, geometry, first.p_W, x, e, jacobian);
+      addBendingStiffness(model, geometry, first.p_W, x, e, jacobian);  // the springs' kappa_b B^T B in K (§11)
+    // (S17)-(S18): the stage keeps the axis s (and whether the element is constrained) of this state.
     block.stage[i].s = terms[i].s;
     block.stage[i].constrained = terms[i].constrained;
   }
   if (layout.free && n > 0)
   {
+    // (S27): dF/dx_1 and dF/dv_1 join the first element's K_ff and D_ff.
     block.jacobians[0].dh_dx.topLeftCorner<3, 3>() += first_dF_dx;
     block.jacobians[0].dh_dv.topLeftCorner<3, 3>() += first_dF_dv;
   }
@@ -72,6 +79,7 @@ void ImplicitStepper::lineariseChain(std::size_t index, const Chain& chain, cons
   Eigen::Matrix3d dF_dx = Eigen::Matrix3d::Zero(), dF_dv = Eigen::Matrix3d::Zero();
   if (L.free)
   {
+    // (S27): a free first joint's acceleration a_1 from dydt, and the seabed's dF/dx_1, dF/dv_1.
     first.a_W = L.freeVelocity(dydt);
     chain.freeEndContactJacobian(model, first, dF_dx, dF_dv);
   }
@@ -79,8 +87,9 @@ void ImplicitStepper::lineariseChain(std::size_t index, const Chain& chain, cons
                  chain.accelerations(), chain.terms(), chain.axialMultipliers(), dF_dx, dF_dv);
 }
 
-// (S19): the stage matrix N = M - gamma h D - (gamma h)^2 K per element, with D = dh/dv and K = dh/dx of
-// (S16); the sweep's matrix pass then factors (S18) as it does (S3)-(S6).
+// (S19): the stage matrix N_XY = M_XY - gamma h D_XY - (gamma h)^2 K_XY per element, with D = dh_dv and
+// K = dh_dx of (S16) (the locals D and K are those of (S16); M holds the projected inertia M_XY, N the stage's
+// N_XY, both ElementTerms); the sweep's matrix pass then factors (S18) as it does (S3)-(S6).
 void ImplicitStepper::factor(double h)
 {
   const double gh = gamma_ * h, gh2 = gh * gh;
@@ -92,16 +101,19 @@ void ImplicitStepper::factor(double h)
       const Matrix6d& D = block.jacobians[i].dh_dv;
       const Matrix6d& K = block.jacobians[i].dh_dx;
       ElementTerms& N = block.stage[i];
+      // (S19) block by block, X, Y in {f, a}: N_ff, N_fa, N_af, N_aa.
       N.M_ff = M.M_ff - gh * D.topLeftCorner<3, 3>() - gh2 * K.topLeftCorner<3, 3>();
       N.M_fa = M.M_fa - gh * D.topRightCorner<3, 3>() - gh2 * K.topRightCorner<3, 3>();
       N.M_af = M.M_af - gh * D.bottomLeftCorner<3, 3>() - gh2 * K.bottomLeftCorner<3, 3>();
       N.M_aa = M.M_aa - gh * D.bottomRightCorner<3, 3>() - gh2 * K.bottomRightCorner<3, 3>();
     }
-    block.sweep.factor(block.stage);
+    block.sweep.factor(block.stage);  // (S8)-(S13) over N_XY: Lambda, Phi, A', b, sigma, xi
   }
   h_ = h;
 }
 
+// (S18)-(S19) block by block of W (block-diagonal over the chains). K here is the stage k, not the load
+// stiffness K of (S16).
 void ImplicitStepper::solve(const std::vector<double>& r, const TowPointRates& tow, std::vector<double>& K)
 {
   K.resize(r.size());
@@ -109,6 +121,8 @@ void ImplicitStepper::solve(const std::vector<double>& r, const TowPointRates& t
     solveBlock(block, r, tow, K);
 }
 
+// One block's stage (S18)-(S19), (S27). Names here: K is the stage k = (k_x, k_v), Kx the load stiffness K of
+// (S16), stage.h_f and h_a are w~_f and w~_a, stage.c is Psi~ (docs/solver.md §7's table).
 void ImplicitStepper::solveBlock(Block& block, const std::vector<double>& r, const TowPointRates& tow,
                                  std::vector<double>& K)
 {
@@ -116,15 +130,16 @@ void ImplicitStepper::solveBlock(Block& block, const std::vector<double>& r, con
   const double gh = gamma_ * h_;
   const auto r_x = L.positions(r);
   const auto r_v = L.velocities(r);
-  // The first joint: the tow point, whose K is known: the same form holds with r_v = K_v (its acceleration
-  // increment is not an unknown: K_v - r_v = 0) and r_x = K_x - gamma h K_v. A free first joint (S27): its
-  // own rows of r.
+  // The first joint: the tow point, whose k = (k_t v_1, k_t a_1) is known: the same form holds with r_v = k_v
+  // (its acceleration increment is not an unknown: delta a = (k_v - r_v)/(gamma h) = 0) and
+  // r_x = k_x - gamma h k_v (§7). A free first joint (S27): its own rows of r.
   const Eigen::Vector3d rv_first = L.free ? Eigen::Vector3d(L.freeVelocity(r)) : tow.v;
   const Eigen::Vector3d rx_first = L.free ? Eigen::Vector3d(L.freePosition(r)) : Eigen::Vector3d(tow.x - gh * tow.v);
   for (size_t i = 0; i < block.stage.size(); ++i)
   {
-    // (S19): g = M r_v + gamma h K r_x over the element's two joints, c' = s.(r_v,a - r_v,f): the loads and
-    // the constraint of (S18), the linearised element (S17) scaled by gamma h.
+    // (S19): w~_X = sum_Y (M_XY r_v,Y + gamma h K_XY r_x,Y) over the element's two joints (in stage.h_f,
+    // h_a) and Psi~ = s.(r_v,a - r_v,f) (in stage.c): the loads and the constraint of (S18), the linearised
+    // element (S17) scaled by gamma h.
     const Eigen::Index e = static_cast<Eigen::Index>(i);
     const Eigen::Vector3d rv_f = e == 0 ? rv_first : Eigen::Vector3d(r_v.col(e - 1));
     const Eigen::Vector3d rx_f = e == 0 ? rx_first : Eigen::Vector3d(r_x.col(e - 1));
@@ -142,26 +157,28 @@ void ImplicitStepper::solveBlock(Block& block, const std::vector<double>& r, con
   if (L.free)
   {
     // (S27): nothing outside the chain moves with the stage (the contact's derivatives are in the first
-    // element's loads): T'_1 = 0 at the free joint.
+    // element's loads): T~_1 = 0 at the free joint, k_v,1 = -Lambda~_1^-1 tau~_1, k_x,1 = r_x,1 + gamma h k_v,1.
     const Eigen::Vector3d K_first = block.sweep.solveFree(block.stage, block.K_v);
     L.freeVelocity(K) = K_first;
     L.freePosition(K) = rx_first + gh * K_first;
   }
-  else
+  else  // (S9)-(S13) over w~_X, Psi~, then (S14) from the tow point's k_v = k_t a_1
     block.sweep.solve(block.stage, tow.v, block.K_v);
   L.velocities(K) = block.K_v;
-  L.positions(K) = r_x + gh * block.K_v;  // K_x = r_x + gamma h K_v (docs/solver.md §7)
+  L.positions(K) = r_x + gh * block.K_v;  // k_x = r_x + gamma h k_v (docs/solver.md §7)
   if (!L.winch)
     return;
-  // The winch: [1, -gh; -gh a_L, 1 - gh a_R] (K_L, K_R) = (r_L, r_R).
+  // The winch (§7): [1, -gamma h; -gamma h dL''/dL, 1 - gamma h dL''/dL'] (k_L, k_L') = (r_L, r_L'), with
+  // dL''/dL = winch_d_length_, dL''/dL' = winch_d_rate_; k_L' after eliminating k_L = r_L + gamma h k_L'.
   const double r_L = L.cableOut(r), r_R = L.payoutRate(r);
   const double det = (1.0 - gh * winch_d_rate_) - gh * gh * winch_d_length_;
   L.payoutRate(K) = (r_R + gh * winch_d_length_ * r_L) / det;
   L.cableOut(K) = r_L + gh * L.payoutRate(K);
 }
 
-// (S15): W K_i = f(t + c_i h, y + h sum_{j<i} a_ij K_j) + sum_{j<i} c_ij K_j (+ the tow point's K_t,i (v, a)),
-// each solved in O(nu) by solve(); y_next = y + h sum m_i K_i, error = h sum e_i K_i.
+// (S15): W k_i = f(t + c_i h, y + h sum_{j<i} a_ij k_j) + sum_{j<i} c_ij k_j (+ the tow point's k_t,i (v_1, a_1)
+// for the gamma h k_t,i f_t term), each solved in O(nu) by solve(); y_next = y + h sum m_i k_i, error (err) =
+// h sum e_i k_i. Names here: stage_k_[i] is k_i, K_t[i] is k_t,i.
 void ImplicitStepper::stages(const RosenbrockTableau& rw, double t, double h, const std::vector<double>& y,
                              const std::vector<double>& f0, const ShipEndState& ship, const Derivative& f,
                              std::vector<double>& y_next, std::vector<double>& error)
@@ -173,13 +190,13 @@ void ImplicitStepper::stages(const RosenbrockTableau& rw, double t, double h, co
   double K_t[RosenbrockTableau::kMaxStages];
   for (int i = 0; i < rw.stages; ++i)
   {
-    double t_stage = t;
-    K_t[i] = 1.0;
+    double t_stage = t;  // t + c_i h, c_i = sum_{j<i} a_ij k_t,j
+    K_t[i] = 1.0;        // k_t,i = 1 + sum_{j<i} c_ij k_t,j
     if (i == 0)
       stage_f_ = f0;
     else
     {
-      stage_y_ = y;
+      stage_y_ = y;  // y + h sum_{j<i} a_ij k_j
       for (int j = 0; j < i; ++j)
       {
         t_stage += h * rw.a[i][j] * K_t[j];
@@ -189,12 +206,13 @@ void ImplicitStepper::stages(const RosenbrockTableau& rw, double t, double h, co
             stage_y_[q] += h * rw.a[i][j] * stage_k_[j][q];
       }
       f(t_stage, stage_y_, stage_f_);
-      for (int j = 0; j < i; ++j)
+      for (int j = 0; j < i; ++j)  // + sum_{j<i} c_ij k_j
         for (size_t q = 0; q < n; ++q)
           stage_f_[q] += rw.c[i][j] * stage_k_[j][q];
     }
-    solve(stage_f_, TowPointRates{ K_t[i] * ship.v_W, K_t[i] * ship.a_W }, stage_k_[i]);
+    solve(stage_f_, TowPointRates{ K_t[i] * ship.v_W, K_t[i] * ship.a_W }, stage_k_[i]);  // W k_i = ...
   }
+  // y_next = y + h sum m_i k_i, err = h sum e_i k_i.
   y_next = y;
   error.assign(n, 0.0);
   for (int i = 0; i < rw.stages; ++i)
@@ -205,21 +223,24 @@ void ImplicitStepper::stages(const RosenbrockTableau& rw, double t, double h, co
     }
 }
 
-// (S24): positions relative to the chain's first joint, velocities as they are.
+// (S24): ||err|| over the chains, positions relative to the chain's first joint x_1, velocities as they are.
+// `error` is err, the result ||err||; atol_x, atol_v, rtol are num.implicit_position_tol, implicit_velocity_tol,
+// implicit_rel_tol.
 double implicitErrorNorm(const NumericsParams& num, const std::vector<Chain>& chains, bool winch,
                          const std::vector<double>& error, const std::vector<double>& y,
                          const std::vector<double>& y_next, const Eigen::Vector3d& p0, const Eigen::Vector3d& p1)
 {
   double sum = 0.0, count = 0.0;
-  // The squared ratio of one component's error to its scale; a position and its velocity are summed as a
-  // pair.
+  // (S24)'s squared ratio of one component's error to its scale, atol + rtol max(|value0|, |value1|); a
+  // position and its velocity are summed as a pair.
   auto ratio = [&](double e, double value0, double value1, double atol)
   { return std::pow(e / (atol + num.implicit_rel_tol * std::max(std::abs(value0), std::abs(value1))), 2); };
   for (const Chain& chain : chains)
   {
     const StateLayout& L = chain.layout();
-    // Measured from the chain's first joint: the tow point, or a parted vehicle side's free end (which drifts
-    // away from the ship without limit), whose own position error is taken against the absolute tolerance.
+    // Measured from the chain's first joint x_1 (q0, q1): the tow point, or a parted vehicle side's free end
+    // (which drifts away from the ship without limit, §9), whose own position error is taken against the
+    // absolute tolerance.
     const Eigen::Vector3d q0 = L.free ? Eigen::Vector3d(L.freePosition(y)) : p0;
     const Eigen::Vector3d q1 = L.free ? Eigen::Vector3d(L.freePosition(y_next)) : p1;
     const auto e_x = L.positions(error), e_v = L.velocities(error);
@@ -229,7 +250,7 @@ double implicitErrorNorm(const NumericsParams& num, const std::vector<Chain>& ch
       for (int i = 0; i < 3; ++i)
         sum += ratio(e_x(i, j), x0(i, j) - q0[i], x1(i, j) - q1[i], num.implicit_position_tol) +
                ratio(e_v(i, j), v0(i, j), v1(i, j), num.implicit_velocity_tol);
-    count += 6.0 * L.joints;
+    count += 6.0 * L.joints;  // n_c
     if (L.winch && winch)
     {
       sum += ratio(L.cableOut(error), L.cableOut(y), L.cableOut(y_next), num.implicit_position_tol) +
@@ -245,7 +266,7 @@ double implicitErrorNorm(const NumericsParams& num, const std::vector<Chain>& ch
       count += 6.0;
     }
   }
-  return std::sqrt(sum / count);
+  return std::sqrt(sum / count);  // ||err|| = sqrt((1/n_c) sum ...)
 }
 
 }  // namespace tow_sim

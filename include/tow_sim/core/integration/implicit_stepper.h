@@ -1,23 +1,25 @@
-// The linearly implicit step's stage solve (docs/solver.md §7). The Rosenbrock-W methods (ROS34PW2 by
-// default, ROS2; rosenbrock_tableau.h; the stage loop: stages()) solve each stage
-// with the same matrix W = I - gamma h J:
-//   W K_i = f(t + c_i h, y + h sum a_ij K_j) + sum c_ij K_j + gamma h K_t,i df/dt.            (S15)
+// The linearly implicit step's stage solve (docs/solver.md §7; these comments use its symbols, whose table in §7
+// maps them to the code's names). The Rosenbrock-W methods (ROS34PW2 by default, ROS2; rosenbrock_tableau.h;
+// the stage loop: stages()) solve each stage with the same matrix W = I - gamma h J:
+//   W k_i = f(t + c_i h, y + h sum a_ij k_j) + sum c_ij k_j + gamma h k_t,i df/dt.            (S15)
 // J is an approximation of the right-hand side's Jacobian taken once per step (a W-method keeps its order
-// with any J). Each stage solve (I - gamma h J) K = r costs O(nu): with K = (K_x, K_v) for the positions
-// and velocities, K_x = r_x + gamma h K_v, and K_v with the multipliers solves equations of the solver's
-// own form, element by element,
-//   N_ff K_f + N_fa K_a - g_f = T_fwd - mu s,  N_af K_f + N_aa K_a - g_a = -T_aft + mu s,  s.(K_a - K_f) = c',
-//                                                                                               (S18)
-//   N = M - gamma h D - (gamma h)^2 K,  g = M r_v + gamma h K r_x,  c' = s.(r_v,a - r_v,f),       (S19)
-// (the linearised element (S17) scaled by gamma h; M the projected inertia, D and K the load derivatives
+// with any J). Each stage solve (I - gamma h J) k = r costs O(nu): with k = (k_x, k_v) for the positions
+// and velocities, k_x = r_x + gamma h k_v, and k_v with the multipliers solves equations of the solver's
+// own form, element by element (the tilde marks the stage's quantities),
+//   N_ff k_v,f + N_fa k_v,a - w~_f = T~_fwd - mu~ s,  N_af k_v,f + N_aa k_v,a - w~_a = -T~_aft + mu~ s,
+//   s.(k_v,a - k_v,f) = Psi~,                                                                   (S18)
+//   N_XY = M_XY - gamma h D_XY - (gamma h)^2 K_XY,  w~_X = sum_Y (M_XY r_v,Y + gamma h K_XY r_x,Y),
+//   Psi~ = s.(r_v,a - r_v,f),                                                                   (S19)
+// (the linearised element (S17) scaled by gamma h; M_XY the projected inertia, D and K the load derivatives
 // (S16) of chain_jacobian.h), so ChainSweep solves them:
 // the matrix pass once per step size, a vector pass per stage. The winch's cable out and rate form their
-// own 2 x 2 block.
+// own 2 x 2 block. In the code the stage vectors k are `K` (solve()) and `stage_k_` (stages()); the load
+// stiffness K is ElementJacobian::dh_dx.
 // The right-hand side depends on time through the tow point x_1, which moves as the ship says. The
 // method is applied to the autonomous system in (t, y): its stages then carry the time derivative of f,
-// W K_i = ... + gamma h K_t,i df/dt (K_t the time component of the stages, 1 in the first), and df/dt is
+// W k_i = ... + gamma h k_t,i df/dt (k_t the time component of the stages, 1 in the first), and df/dt is
 // the response of the chain to the tow point moving at the ship's velocity and acceleration: the stage
-// takes the tow point's increments (K_t v, K_t a) as known joint values. Without them the tow point's
+// takes the tow point's increments (k_t v_1, k_t a_1) as known joint values. Without them the tow point's
 // motion acts explicitly on the first element, the stiffest spring of a fine chain.
 #pragma once
 
@@ -34,7 +36,8 @@
 
 namespace tow_sim
 {
-// The tow point's increments in a stage: position and velocity rows.
+// The tow point's increments in a stage (docs/solver.md §7): position and velocity rows, x = k_t v_1 and
+// v = k_t a_1 of (S15).
 struct TowPointRates
 {
   Eigen::Vector3d x = Eigen::Vector3d::Zero();
@@ -46,7 +49,7 @@ class ImplicitStepper
 public:
   static constexpr double kGamma = 1.7071067811865475;  // ROS2's, 1 + 1/sqrt(2): the default
 
-  // The method's gamma (rosenbrock_tableau.h); factor() must follow.
+  // The method's gamma of (S15) (rosenbrock_tableau.h); factor() must follow.
   void setGamma(double gamma)
   {
     gamma_ = gamma;
@@ -54,7 +57,7 @@ public:
   }
   double gamma() const { return gamma_; }
 
-  // The linearisation at a state of one chain whose block is StateLayout{joints} (tests): `terms`,
+  // (S16)-(S17): the linearisation at a state of one chain whose block is StateLayout{joints} (tests): `terms`,
   // `multipliers` and accelerations a of a ChainSolver::solve at it (the projected inertia, the axes, the
   // axial forces), its joints x, v (3 x (nu+1)), the tow point's motion, and the winch's rate law's
   // derivatives d(payout acceleration)/d(cable out) [1/s^2] and /d(rate) [1/s]. The simulator's form is
@@ -83,15 +86,17 @@ public:
   // last refreshed), the ship's tow point `ship` at t.
   void lineariseChain(std::size_t index, const Chain& chain, const ChainModel& model, const ChainData& data, double t,
                       const ShipEndState& ship, const std::vector<double>& y, const std::vector<double>& dydt);
-  // The stage matrix for the step h [s] and its matrix pass (after linearise; again after each change of h).
+  // (S19): the stage matrix N_XY for the step h [s] and its matrix pass (S8)-(S13) (after linearise; again
+  // after each change of h).
   void factor(double h);
-  // K = (I - gamma h J)^-1 (r + gamma h df/dt-part) for r laid out as the linearised chains' blocks, the
-  // tow point's increments `tow` known (position, velocity: K_t (v, a)) for the chains that hang from it.
+  // (S18)-(S19), (S27): the stage k = (I - gamma h J)^-1 (r + gamma h df/dt-part), returned in K, for r laid
+  // out as the linearised chains' blocks, the tow point's increments `tow` known (position, velocity:
+  // k_t (v_1, a_1)) for the chains that hang from it.
   void solve(const std::vector<double>& r, const TowPointRates& tow, std::vector<double>& K);
 
   // One step of the method `rw` (S15) from (t, y), f0 = f(t, y), the stage matrix factored for h [s]:
-  // y_next and error (y_next less the embedded solution). The tow point's increments in stage i are
-  // K_t,i (v, a) of `ship` at t.
+  // y_next and error, err = h sum e_i k_i (y_next less the embedded solution). The tow point's increments in
+  // stage i are k_t,i (v_1, a_1) of `ship` at t.
   using Derivative = std::function<void(double t, const std::vector<double>& y, std::vector<double>& dydt)>;
   void stages(const RosenbrockTableau& rw, double t, double h, const std::vector<double>& y,
               const std::vector<double>& f0, const ShipEndState& ship, const Derivative& f, std::vector<double>& y_next,
@@ -100,15 +105,15 @@ public:
   double step() const { return h_; }  // [s] as factored
 
 private:
-  // One chain's part of the stage (S18)-(S19).
+  // One chain's part of the stage (S18)-(S19): a block of W.
   struct Block
   {
     StateLayout layout;
-    std::vector<ElementTerms> inertia;       // M and s at the linearisation (their h, c unused)
-    std::vector<ElementJacobian> jacobians;  // D and K per element
-    std::vector<ElementTerms> stage;         // N, and per stage g and c'
+    std::vector<ElementTerms> inertia;       // M_XY and s at the linearisation (their w_X, Psi unused)
+    std::vector<ElementJacobian> jacobians;  // D and K per element (S16)
+    std::vector<ElementTerms> stage;         // N_XY, and per stage w~_X (in h_f, h_a) and Psi~ (in c) (S19)
     ChainSweep sweep;
-    Eigen::Matrix3Xd K_v;
+    Eigen::Matrix3Xd K_v;  // the stage's k_v at the block's joints (S18)
   };
   void solveBlock(Block& block, const std::vector<double>& r, const TowPointRates& tow, std::vector<double>& K);
 
@@ -116,13 +121,13 @@ private:
   double h_ = 0.0;
   double gamma_ = kGamma;
   double winch_d_length_ = 0.0, winch_d_rate_ = 0.0;
-  std::vector<std::vector<double>> stage_k_;  // the stages' workspace
+  std::vector<std::vector<double>> stage_k_;  // the stages' workspace: k_i of (S15)
   std::vector<double> stage_y_, stage_f_;
 };
 
-// The weighted RMS of an implicit step's error, `error` of the step from y to y_next (accepted when <= 1)
-// over the chains' blocks (S24): each component against atol + rtol |value| (numerics'
-// implicit_*_tol, the larger of the two ends), the positions measured from the tow point (p0 at the start,
+// (S24): the weighted RMS ||err|| of an implicit step's error, `error` (err) of the step from y to y_next
+// (accepted when <= 1) over the chains' blocks: each component against atol + rtol |value| (numerics'
+// implicit_*_tol, the larger of the two ends), the positions measured from the tow point x_1 (p0 at the start,
 // p1 at the end) so that the norm does not depend on where the world's origin is; the cable out and the
 // payout rate too when `winch` (in the block that holds them); a free first joint's position (absolute) and
 // velocity, the positions of its chain measured from it.
