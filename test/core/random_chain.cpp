@@ -1,6 +1,7 @@
 #include "core/random_chain.h"
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 namespace tow_sim
@@ -40,7 +41,9 @@ std::shared_ptr<Vehicle> makeRandomVehicle(EndKind kind, std::mt19937& rng)
   return std::make_shared<Vehicle>(p);
 }
 
-RandomCase makeRandomCase(int segments, std::mt19937& rng, EndKind kind, bool winch, bool seabed)
+namespace
+{
+CableParams randomCable(int segments, bool elastic, std::mt19937& rng)
 {
   std::uniform_real_distribution<double> u(0.0, 1.0);
   CableParams cable;
@@ -52,6 +55,19 @@ RandomCase makeRandomCase(int segments, std::mt19937& rng, EndKind kind, bool wi
   cable.tangential_drag_coefficient = 0.05 * u(rng);
   cable.added_mass_coefficient = 1.5 * u(rng);
   cable.tangential_drag_model = u(rng) < 0.5 ? TangentialDragModel::kPode : TangentialDragModel::kQuadratic;
+  if (elastic)
+  {
+    cable.axial_stiffness = std::pow(10.0, 5.0 + 3.0 * u(rng));
+    cable.axial_damping = 0.01 * *cable.axial_stiffness * u(rng);
+  }
+  return cable;
+}
+}  // namespace
+
+RandomCase makeRandomCase(int segments, std::mt19937& rng, EndKind kind, bool winch, bool seabed, bool elastic)
+{
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const CableParams cable = randomCable(segments, elastic, rng);
   EndElementParams end;
   end.length = 0.5 + 4.0 * u(rng);
   end.mass = 10.0 + 500.0 * u(rng);
@@ -95,9 +111,12 @@ RandomCase makeRandomCase(int segments, std::mt19937& rng, EndKind kind, bool wi
   {
     const Eigen::Vector3d s = randomVector(rng, 1.0).normalized();
     const Eigen::Vector3d omega = randomVector(rng, 0.3);
-    const double d = c.geometry.elementLength(e);
+    const bool stretches = elastic && e < c.geometry.segments;
+    const double d = c.geometry.elementLength(e) * (stretches ? 1.0 + 0.002 * u(rng) : 1.0);
     c.x.col(e) = x_f + d * s;
     c.v.col(e) = v_f + d * omega.cross(s);  // consistent with the length constraint
+    if (stretches)
+      c.v.col(e) += 0.05 * (u(rng) - 0.5) * s;  // an elastic segment's stretch rate
     if (e == 0)
       c.v.col(e) += payout_rate * s;  // ... and the winch's rate
     x_f = c.x.col(e);

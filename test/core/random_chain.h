@@ -38,8 +38,10 @@ std::shared_ptr<Vehicle> makeRandomVehicle(EndKind kind, std::mt19937& rng);
 
 // winch: the first segment is paid out (random length, rate and acceleration) while the rest is not.
 // seabed: a flat bottom through the middle of the chain's depth range (some joints in it).
+// elastic: an elastic cable (EA 1e5 .. 1e8 N, some axial damping), each segment stretched up to 0.2 % and
+// stretching at a random rate (no winch then).
 RandomCase makeRandomCase(int segments, std::mt19937& rng, EndKind kind = EndKind::kRigid, bool winch = false,
-                          bool seabed = false);
+                          bool seabed = false, bool elastic = false);
 
 }  // namespace test
 }  // namespace tow_sim
