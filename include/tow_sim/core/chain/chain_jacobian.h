@@ -6,12 +6,12 @@
 
 namespace tow_sim
 {
-// The derivatives of one element's loads projected onto its joints (the solver's h_f, h_a, (S5)): rows
-// (h_f, h_a), columns (forward joint, aft joint).
+// The derivatives of one element's loads projected onto its joints (w_f, w_a of docs/solver.md (S5), the
+// code's h_f, h_a): rows (w_f, w_a), columns (forward joint, aft joint).
 struct ElementJacobian
 {
-  Matrix6d dh_dv;  // [N s/m] d(h_f, h_a) / d(v_f, v_a): D
-  Matrix6d dh_dx;  // [N/m]   d(h_f, h_a) / d(x_f, x_a): K
+  Matrix6d dh_dv;  // [N s/m] d(w_f, w_a) / d(v_f, v_a): D
+  Matrix6d dh_dx;  // [N/m]   d(w_f, w_a) / d(x_f, x_a): K
 };
 
 // Element e at the joint kinematics k of a solve (ChainSolver's), mu its axial multiplier from that solve

@@ -1,10 +1,10 @@
 // Rosenbrock-W tableaus in the form the implicit stepper uses (docs/solver.md §7):
-//   W K_i = f(t + c_i h, y + h sum_{j<i} a_ij K_j) + sum_{j<i} c_ij K_j + gamma h K_t,i df/dt,   (S15)
-//   W = I - gamma h J,  K_t,i = 1 + sum_{j<i} c_ij K_t,j,
-//   y_next = y + h sum_i m_i K_i,  error = h sum_i e_i K_i (y_next less the embedded solution),
+//   W k_i = f(t + c_i h, y + h sum_{j<i} a_ij k_j) + sum_{j<i} c_ij k_j + gamma h k_t,i df/dt,   (S15)
+//   W = I - gamma h J,  k_t,i = 1 + sum_{j<i} c_ij k_t,j,
+//   y_next = y + h sum_i m_i k_i,  error = h sum_i e_i k_i (y_next less the embedded solution),
 // which needs no product with J outside the stage matrix. A method published in the standard form
-//   (I - gamma h J) k_i = h f(y + sum a_ij k_j) + h J sum_{j<i} gamma_ij k_j,  y_next = y + sum b_i k_i,
-// is brought to it by u = Gamma k (Gamma lower triangular with gamma on its diagonal) and K = u / (gamma h):
+//   (I - gamma h J) kbar_i = h f(y + sum a_ij kbar_j) + h J sum_{j<i} gamma_ij kbar_j,  y_next = y + sum b_i kbar_i,
+// is brought to it by u = Gamma kbar (Gamma lower triangular with gamma on its diagonal) and k = u / (gamma h):
 //   a = gamma A Gamma^-1,  c = gamma (diag(1/gamma) - Gamma^-1),  m = gamma b Gamma^-1,
 //   e = gamma (b - b_embedded) Gamma^-1   (Hairer and Wanner, Solving ODEs II, §IV.7).
 #pragma once
