@@ -35,33 +35,19 @@ std::string checkValues(const char* key, const std::vector<double>& values, size
 
 CableLoading::CableLoading(std::vector<double> angles, std::vector<double> normal, std::vector<double> tangential,
                            std::vector<double> lift, const std::string& name)
-    : angles_(std::move(angles)), normal_(std::move(normal)), tangential_(std::move(tangential)), lift_(std::move(lift))
+    : grid_(std::move(angles), name),
+      normal_(std::move(normal)),
+      tangential_(std::move(tangential)),
+      lift_(std::move(lift))
 {
   if (lift_.empty())
-    lift_.assign(angles_.size(), 0.0);
+    lift_.assign(grid_.size(), 0.0);
   std::ostringstream problem;
-  // The last angle is pi/2 (within 1e-4, so that 1.5708 will do): taken as pi/2 before the order is checked.
-  if (!angles_.empty() && std::abs(angles_.back() - kHalfPi) <= 1e-4)
-    angles_.back() = kHalfPi;
-  if (angles_.size() < 2)
-    problem << "angles needs at least 2 points, from 0 to pi/2 [rad]; got " << angles_.size();
-  for (size_t i = 0; problem.str().empty() && i < angles_.size(); ++i)
-  {
-    if (!std::isfinite(angles_[i]))
-      problem << "angles[" << i << "] = " << angles_[i] << " must be finite";
-    else if (i > 0 && !(angles_[i] > angles_[i - 1]))
-      problem << "angles must increase strictly; angles[" << i << "] = " << angles_[i] << " [rad] follows "
-              << angles_[i - 1];
-  }
-  if (problem.str().empty() && (angles_.front() != 0.0 || angles_.back() != kHalfPi))
-    problem << "angles must run from 0 to pi/2 = 1.5707963 [rad] (within 1e-4); got " << angles_.front() << " .. "
-            << angles_.back();
+  problem << checkValues("normal", normal_, grid_.size(), true, true);
   if (problem.str().empty())
-    problem << checkValues("normal", normal_, angles_.size(), true, true);
+    problem << checkValues("tangential", tangential_, grid_.size(), true, false);
   if (problem.str().empty())
-    problem << checkValues("tangential", tangential_, angles_.size(), true, false);
-  if (problem.str().empty())
-    problem << checkValues("lift", lift_, angles_.size(), false, true);
+    problem << checkValues("lift", lift_, grid_.size(), false, true);
   if (!problem.str().empty())
     throw std::invalid_argument(name + ": " + problem.str());
 }
@@ -69,34 +55,29 @@ CableLoading::CableLoading(std::vector<double> angles, std::vector<double> norma
 CableLoading::Coefficients CableLoading::at(double phi) const
 {
   phi = std::clamp(phi, 0.0, kHalfPi);
-  const size_t upper = static_cast<size_t>(std::upper_bound(angles_.begin(), angles_.end(), phi) - angles_.begin());
-  const size_t i = std::clamp<size_t>(upper, 1, angles_.size() - 1);  // phi in [angles[i-1], angles[i]]
-  const double width = angles_[i] - angles_[i - 1];
-  const double w = (phi - angles_[i - 1]) / width;
-  auto value = [&](const std::vector<double>& v) { return (1.0 - w) * v[i - 1] + w * v[i]; };
-  auto slope = [&](const std::vector<double>& v) { return (v[i] - v[i - 1]) / width; };
+  const AngleGrid::Place p = grid_.locate(phi);
   Coefficients c;
-  c.normal = value(normal_);
-  c.tangential = value(tangential_);
-  c.lift = value(lift_);
-  c.normal_slope = slope(normal_);
-  c.tangential_slope = slope(tangential_);
-  c.lift_slope = slope(lift_);
-  return c;
-}
-
-void CableLoading::perSine(double phi, double& normal, double& lift) const
-{
-  const double sine = std::sin(std::clamp(phi, 0.0, kHalfPi));
-  if (sine < kTinySine)
+  c.normal = AngleGrid::value(normal_, p);
+  c.tangential = AngleGrid::value(tangential_, p);
+  c.lift = AngleGrid::value(lift_, p);
+  c.normal_slope = AngleGrid::slope(normal_, p);
+  c.tangential_slope = AngleGrid::slope(tangential_, p);
+  c.lift_slope = AngleGrid::slope(lift_, p);
+  const double sine = std::sin(phi);
+  if (sine < kTinySine)  // C(0) = 0: C(phi) / sin(phi) -> C'(0), its slope -> 0 (taken as 0 here)
   {
-    normal = (normal_[1] - normal_[0]) / angles_[1];  // C(0) = 0: C(phi) / sin(phi) -> C'(0)
-    lift = (lift_[1] - lift_[0]) / angles_[1];
-    return;
+    const AngleGrid::Place first = grid_.locate(0.0);
+    c.normal_per_sine = AngleGrid::slope(normal_, first);
+    c.lift_per_sine = AngleGrid::slope(lift_, first);
+    return c;
   }
-  const Coefficients c = at(phi);
-  normal = c.normal / sine;
-  lift = c.lift / sine;
+  // d(C / sin) / d phi = (C' sin - C cos) / sin^2.
+  const double cosine = std::cos(phi);
+  c.normal_per_sine = c.normal / sine;
+  c.lift_per_sine = c.lift / sine;
+  c.normal_per_sine_slope = (c.normal_slope * sine - c.normal * cosine) / (sine * sine);
+  c.lift_per_sine_slope = (c.lift_slope * sine - c.lift * cosine) / (sine * sine);
+  return c;
 }
 
 CableLoading CableLoading::scaled(double k, const std::string& name) const
@@ -107,7 +88,7 @@ CableLoading CableLoading::scaled(double k, const std::string& name) const
       x *= k;
     return v;
   };
-  return CableLoading(angles_, times(normal_), times(tangential_), times(lift_), name);
+  return CableLoading(grid_.angles(), times(normal_), times(tangential_), times(lift_), name);
 }
 
 }  // namespace tow_sim

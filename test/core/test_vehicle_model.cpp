@@ -6,6 +6,8 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <random>
+#include <string>
+#include <vector>
 
 #include "core/chain_fixtures.h"
 #include "tow_sim/core/chain/chain_solver.h"
@@ -64,6 +66,35 @@ TEST(Fins, TablesAreOddAndEvenAndStall)
   EXPECT_LT(lift(30 * kDeg), lift(18 * kDeg));   // and it stalls
   EXPECT_THROW(AngleTable({ 0.0, 1.0 }, { 0.0, 1.0 }, true, "vehicle.rudder.lift"), std::invalid_argument);
   EXPECT_THROW(AngleTable({ 0.0, kPi / 2 }, { 0.1, 1.0 }, true, "vehicle.rudder.lift"), std::invalid_argument);
+}
+
+// A table's angles are an AngleGrid, as a faired cable's: 1.5708 stands for pi/2 (within 1e-4), 1.57 does not;
+// the errors name the table and what is wrong.
+TEST(Fins, TablesEndAtHalfPiWithinTheGridsTolerance)
+{
+  const AngleTable drag({ 0.0, 0.5, 1.5708 }, { 0.1, 0.3, 1.0 }, false, "vehicle.rudder.drag_table");
+  EXPECT_EQ(drag.angles().back(), kPi / 2);
+  EXPECT_DOUBLE_EQ(drag(kPi / 2), 1.0);
+  EXPECT_DOUBLE_EQ(drag(0.25), 0.2);  // halfway through the first interval
+  auto message = [](const std::vector<double>& angles, const std::vector<double>& values)
+  {
+    try
+    {
+      AngleTable(angles, values, false, "vehicle.rudder.drag_table");
+    }
+    catch (const std::invalid_argument& e)
+    {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(message({ 0.0, 1.57 }, { 0.1, 1.0 }).find("vehicle.rudder.drag_table: angles must run from 0 to pi/2"),
+            std::string::npos);
+  EXPECT_NE(message({ 0.0, 0.9, 0.8, kPi / 2 }, { 0.1, 0.2, 0.3, 1.0 }).find("angles must increase strictly"),
+            std::string::npos);
+  EXPECT_NE(message({ 0.0, kPi / 2 }, { 0.1 }).find("has 1 values for 2 angles"), std::string::npos);
+  EXPECT_NE(message({ 0.0, kPi / 2 }, { 0.1, 200.0 }).find("value 1 = 200 must be finite with |value| <= 100"),
+            std::string::npos);
 }
 
 TEST(Fins, NoLiftAtZeroAngleOfAttackAndTheInflowAngleIsMeasuredInTheFinPlane)

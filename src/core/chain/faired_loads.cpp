@@ -41,26 +41,16 @@ struct FlowParts
   }
 };
 
-// d(C(phi) / sin(phi)) / d phi, zero in the limit phi -> 0 taken by CableLoading::perSine.
-double perSineSlope(double value, double slope, double phi)
-{
-  const double sine = std::sin(phi);
-  if (sine < 1e-6)
-    return 0.0;
-  return (slope * sine - value * std::cos(phi)) / (sine * sine);
-}
 }  // namespace
 
 Eigen::Vector3d fairedForce(const CableLoading& loading, double scale, const Eigen::Vector3d& s,
                             const Eigen::Vector3d& u, double smoothing_speed)
 {
   const FlowParts f(s, u, smoothing_speed);
-  double normal_per_sine = 0.0, lift_per_sine = 0.0;
-  loading.perSine(f.phi, normal_per_sine, lift_per_sine);
-  const double tangential = loading.at(f.phi).tangential;
+  const CableLoading::Coefficients c = loading.at(f.phi);
   // C(phi) |u|^2 n = (C(phi) / sin(phi)) |u| u_n, as sin(phi) = |u_n| / |u|.
-  return scale * (-normal_per_sine * f.speed * f.u_n - tangential * f.speed * f.speed * f.sg * s +
-                  lift_per_sine * f.speed * s.cross(f.u_n));
+  return scale * (-c.normal_per_sine * f.speed * f.u_n - c.tangential * f.speed * f.speed * f.sg * s +
+                  c.lift_per_sine * f.speed * s.cross(f.u_n));
 }
 
 Eigen::Matrix3d fairedForceJacobian(const CableLoading& loading, double scale, const Eigen::Vector3d& s,
@@ -72,18 +62,14 @@ Eigen::Matrix3d fairedForceJacobian(const CableLoading& loading, double scale, c
   const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - s * s.transpose();
   const Eigen::Matrix3d S = skew(s);
   const CableLoading::Coefficients c = loading.at(f.phi);
-  double normal_per_sine = 0.0, lift_per_sine = 0.0;
-  loading.perSine(f.phi, normal_per_sine, lift_per_sine);
   const Eigen::Vector3d grad_phi_u2 = f.phiGradientTimesSpeedSquared(s);  // |u|^2 d phi / d u
   const Eigen::Vector3d u_hat = u / f.speed;
   // d(r(phi) |u| u_n) = r (u_n u_hat^T + |u| P) + r'(phi) |u| u_n (d phi / d u)^T, r = C / sin.
   const Eigen::Matrix3d d_cross_flow = f.u_n * u_hat.transpose() + f.speed * P;
   const Eigen::Matrix3d normal =
-      normal_per_sine * d_cross_flow +
-      (perSineSlope(c.normal, c.normal_slope, f.phi) / f.speed) * f.u_n * grad_phi_u2.transpose();
+      c.normal_per_sine * d_cross_flow + (c.normal_per_sine_slope / f.speed) * f.u_n * grad_phi_u2.transpose();
   const Eigen::Matrix3d lift =
-      lift_per_sine * S * d_cross_flow +
-      (perSineSlope(c.lift, c.lift_slope, f.phi) / f.speed) * S * f.u_n * grad_phi_u2.transpose();
+      c.lift_per_sine * S * d_cross_flow + (c.lift_per_sine_slope / f.speed) * S * f.u_n * grad_phi_u2.transpose();
   // d(C_t(phi) |u|^2 sg(u_t) s) = s (2 C_t sg u + C_t |u|^2 sg' s + sg C_t' |u|^2 d phi / d u)^T.
   const Eigen::Vector3d tangential = 2.0 * c.tangential * f.sg * u + c.tangential * f.speed * f.speed * f.sg_prime * s +
                                      f.sg * c.tangential_slope * grad_phi_u2;

@@ -23,43 +23,18 @@ double wrapAngle(double a)
 }  // namespace
 
 AngleTable::AngleTable(std::vector<double> angles, std::vector<double> values, bool odd, const std::string& name)
-    : angles_(std::move(angles)), values_(std::move(values)), odd_(odd)
+    : grid_(std::move(angles), name), values_(std::move(values)), odd_(odd)
 {
   std::ostringstream problem;
-  if (angles_.size() < 2 || angles_.size() != values_.size())
-    problem << "needs at least 2 (angle, value) points with as many values as angles";
-  else if (angles_.front() != 0.0 || std::abs(angles_.back() - kHalfPi) > 1e-6)
-    problem << "angles must run from 0 to pi/2 = 1.5707963 [rad]; got " << angles_.front() << " .. " << angles_.back();
-  else if (odd_ && values_.front() != 0.0)
+  if (values_.size() != grid_.size())
+    problem << "has " << values_.size() << " values for " << grid_.size() << " angles; give one per angle";
+  for (size_t i = 0; problem.str().empty() && i < values_.size(); ++i)
+    if (!std::isfinite(values_[i]) || std::abs(values_[i]) > 100.0)
+      problem << "value " << i << " = " << values_[i] << " must be finite with |value| <= 100";
+  if (problem.str().empty() && odd_ && values_.front() != 0.0)
     problem << "a lift table must be 0 at 0 (lift is odd); got " << values_.front();
-  else
-  {
-    for (size_t i = 0; i < angles_.size(); ++i)
-    {
-      if (!std::isfinite(angles_[i]) || !std::isfinite(values_[i]) || std::abs(values_[i]) > 100.0)
-        problem << "point " << i << " = (" << angles_[i] << ", " << values_[i]
-                << ") must be finite with |value| <= 100";
-      else if (i > 0 && !(angles_[i] > angles_[i - 1]))
-        problem << "angles must increase strictly; point " << i << " = " << angles_[i] << " [rad]";
-      if (!problem.str().empty())
-        break;
-    }
-  }
   if (!problem.str().empty())
     throw std::invalid_argument(name + ": " + problem.str());
-  angles_.back() = kHalfPi;
-}
-
-double AngleTable::interpolate(double a) const
-{
-  const auto upper = std::upper_bound(angles_.begin(), angles_.end(), a);
-  if (upper == angles_.begin())
-    return values_.front();
-  if (upper == angles_.end())
-    return values_.back();
-  const size_t i = static_cast<size_t>(upper - angles_.begin());
-  const double w = (a - angles_[i - 1]) / (angles_[i] - angles_[i - 1]);
-  return (1.0 - w) * values_[i - 1] + w * values_[i];
 }
 
 double AngleTable::operator()(double angle_of_attack) const
@@ -67,7 +42,7 @@ double AngleTable::operator()(double angle_of_attack) const
   const double a = wrapAngle(angle_of_attack);
   const double magnitude = std::abs(a);
   const bool reversed = magnitude > kHalfPi;
-  const double value = interpolate(reversed ? kPi - magnitude : magnitude);
+  const double value = AngleGrid::value(values_, grid_.locate(reversed ? kPi - magnitude : magnitude));
   if (!odd_)
     return value;
   const double sign = a < 0.0 ? -1.0 : 1.0;
@@ -155,9 +130,10 @@ const ParamTable<FinPairParams>& finParams()
           .number("max_rate", &F::max_rate, "rad/s", 0.0, 100.0, kOpen, "servo slew rate")
           .number("center_of_pressure_offset", &F::center_of_pressure_offset, "m", -10.0, 10.0, kClosed,
                   "chord-wise, aft of the hinge, for the hinge moment")
-          .custom("lift_table", "rad → -", "stalls at 18°", "angles 0 … π/2 increasing; 0 at 0",
+          .custom("lift_table", "rad → -", "stalls at 18°", "angles 0 … π/2 (within 1e-4) increasing; 0 at 0",
                   "F_L: {angles: [...], values: [...]}, linear between points, odd; reversed flow past π/2")
-          .custom("drag_table", "rad → -", "stalls at 18°", "angles 0 … π/2 increasing", "F_D, likewise, even");
+          .custom("drag_table", "rad → -", "stalls at 18°", "angles 0 … π/2 (within 1e-4) increasing",
+                  "F_D, likewise, even");
   return table;
 }
 

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "tow_sim/core/angle_grid.h"
 #include "tow_sim/core/param_table.h"
 
 namespace tow_sim
@@ -17,12 +18,13 @@ class AngleTable
 {
 public:
   AngleTable() = default;
-  // Throws std::invalid_argument naming `name` unless angles start at 0, increase strictly, end at
-  // pi/2 (within 1e-6) and values are finite; an odd table must be 0 at 0.
+  // Throws std::invalid_argument naming `name` unless the angles make an AngleGrid (from 0 to pi/2 within
+  // 1e-4, strictly increasing) and there is one finite value within [-100, 100] per angle; an odd table
+  // must be 0 at 0.
   AngleTable(std::vector<double> angles, std::vector<double> values, bool odd, const std::string& name);
 
   double operator()(double angle_of_attack) const;
-  const std::vector<double>& angles() const { return angles_; }
+  const std::vector<double>& angles() const { return grid_.angles(); }
   const std::vector<double>& values() const { return values_; }
 
   // Default low-aspect-ratio fin curves, normalised so that F_L ~ a [rad] before the stall at 18 deg.
@@ -30,8 +32,8 @@ public:
   static AngleTable defaultDrag();
 
 private:
-  double interpolate(double a) const;  // a in [0, pi/2]
-  std::vector<double> angles_, values_;
+  AngleGrid grid_;
+  std::vector<double> values_;
   bool odd_ = true;
 };
 
