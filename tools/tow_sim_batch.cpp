@@ -14,17 +14,38 @@
 #include <cstring>
 #include <string>
 
+#include "cli.h"
 #include "tow_sim/scenario/batch_run.h"
 
 namespace
 {
 using namespace tow_sim;
 
+constexpr char kTool[] = "tow_sim_batch";
+constexpr char kUsage[] = "tow_sim_batch --scenario FILE.yaml --out DIR [--precision DIGITS]";
+constexpr char kHelp[] = R"(
+Runs a scenario (the ship's manoeuvres, fin, thrust and winch commands, autopilot, sea) faster than
+real time, without roscore.
+
+Options:
+  --scenario FILE.yaml  the scenario to run (docs/tools.md#scenario-files; every key with its unit,
+                        default and range: docs/parameters.md). Required.
+  --out DIR             the output folder, made if it is missing. Required.
+  --precision DIGITS    significant digits of the CSV files' numbers, a whole number in [6, 17]
+                        (default 10; 17 writes every double exactly).
+  -h, --help            prints this help and exits.
+
+Output: DIR/timeseries.csv, DIR/shapes.csv, DIR/scenario.yaml (the scenario with every default
+filled in), DIR/events.csv (the cable parting, if it did), DIR/measurements.csv (with
+sensors.enabled) and DIR/state_<t>.txt at each simulation.save_state_at [s]; a summary on stdout, a
+progress bar on stderr for runs longer than 2 s of wall time.
+Exit codes: 0 done; 2 bad arguments, scenario or saved initial state; 3 the run diverged (the CSV
+files then hold the run up to the last good output); 4 cannot write DIR.
+)";
+
 int usage(const std::string& why)
 {
-  std::fprintf(stderr, "tow_sim_batch: %s\nusage: tow_sim_batch --scenario FILE.yaml --out DIR [--precision DIGITS]\n",
-               why.c_str());
-  return 2;
+  return cli::fail(kTool, kUsage, why);
 }
 
 // A progress bar on stderr for runs longer than 2 s of wall time.
@@ -58,6 +79,8 @@ private:
 
 int main(int argc, char** argv)
 {
+  if (cli::wantsHelp(argc, argv))
+    return cli::printHelp(kUsage, kHelp);
   std::string scenario_path, out_dir;
   int precision = 10;
   for (int i = 1; i < argc; ++i)

@@ -21,6 +21,7 @@
 #include <string>
 #include <system_error>
 
+#include "cli.h"
 #include "tow_sim/core/constants.h"
 #include "tow_sim/scenario/towing_chart.h"
 
@@ -32,15 +33,50 @@ namespace
 {
 using namespace tow_sim;
 
+constexpr char kTool[] = "tow_sim_chart";
+constexpr char kUsage[] =
+    "tow_sim_chart --config FILE.yaml --speeds FROM:TO:STEP --cable-out FROM:TO:STEP\n"
+    "                     [--current SPEED:DIRECTION_DEG] --out DIR [--no-plot]\n"
+    "       tow_sim_chart --config FILE.yaml --target-depth D --speed U [--current SPEED:DIRECTION_DEG]\n"
+    "       tow_sim_chart --config FILE.yaml --cable-out L --depth-band MIN:MAX\n"
+    "                     [--current SPEED:DIRECTION_DEG]";
+constexpr char kHelp[] = R"(
+The towing chart of a configuration: the steady tow (depth, layback, tensions) over a grid of ship
+speeds and lengths of cable out, without roscore. The second form finds the cable out that puts the
+vehicle at a depth, the third the speeds that keep it in a depth band.
+
+Options:
+  --config FILE.yaml              the configuration, in the node's YAML format
+                                  (config/tow_sim.yaml). Required.
+  --speeds FROM:TO:STEP           the chart's ship speeds [m/s], each in [-15, 15]; one value is a
+                                  grid of one.
+  --cable-out FROM:TO:STEP        the chart's lengths of cable out [m], each in (0, 1e5]; with
+                                  --depth-band, one length L [m].
+  --out DIR                       the chart's output folder, made if it is missing.
+  --no-plot                       writes only chart.csv, no PNG charts.
+  --target-depth D                the depth [m] of the vehicle's CG to find the cable out for (with
+                                  --speed), sought between winch.min_length and winch.max_length.
+  --speed U                       the ship's speed [m/s] for --target-depth.
+  --depth-band MIN:MAX            the vehicle's depth band [m] to find the speeds in [0.1, 10] m/s
+                                  for (with --cable-out L).
+  --current SPEED:DIRECTION_DEG   a uniform current of SPEED [m/s] in [-20, 20] flowing toward
+                                  DIRECTION_DEG [deg] from the ship's heading, counter-clockwise (0:
+                                  with the ship, 180: against it, 90: to port). Default: no current.
+  -h, --help                      prints this help and exits.
+
+Output: DIR/chart.csv (speed, cable_out, current, depth, layback, tension_ship, tension_vehicle,
+ship_angle, max_tension, converged [m/s, m, m/s, m, m, N, N, deg, N, 0/1]) and, with
+python3-matplotlib, its PNG charts in DIR (tow_sim_plot); see
+docs/tools.md#towing-charts-tow_sim_chart. The planning forms print their answer on stdout and write
+no file.
+Exit codes: 0 done (chart points without an equilibrium are blank in the CSV and said on stderr, not
+an error); 2 bad arguments or configuration; 3 the depth or band is out of reach; 4 cannot write
+DIR.
+)";
+
 int usage(const std::string& why)
 {
-  std::fprintf(stderr,
-               "tow_sim_chart: %s\nusage: tow_sim_chart --config FILE.yaml --speeds FROM:TO:STEP --cable-out "
-               "FROM:TO:STEP [--current SPEED:DIRECTION_DEG] --out DIR [--no-plot]\n"
-               "       tow_sim_chart --config FILE.yaml --target-depth D --speed U [--current SPEED:DIRECTION_DEG]\n"
-               "       tow_sim_chart --config FILE.yaml --cable-out L --depth-band MIN:MAX [--current ...]\n",
-               why.c_str());
-  return 2;
+  return cli::fail(kTool, kUsage, why);
 }
 
 struct Options
@@ -184,6 +220,8 @@ int planSpeeds(const SimulationConfig& config, const Options& o, const Eigen::Ve
 
 int main(int argc, char** argv)
 {
+  if (cli::wantsHelp(argc, argv))
+    return cli::printHelp(kUsage, kHelp);
   Options o;
   const std::string wrong = parseArguments(argc, argv, o);
   if (!wrong.empty())

@@ -1,14 +1,16 @@
 // Offline steady-tow example: the default 500 m cable and the example vehicle (2 m long, 0.3 m
 // diameter, tail fins) towed straight at 2 m/s from a straight initial line, integrated until the
 // shape settles, then an elevator step. Prints a status line per simulated minute.
-// Usage: tow_sim_demo [duration_s (default 900)]
+// Usage: tow_sim_demo [DURATION]   (DURATION [s] in [60, 1e6], default 900; tow_sim_demo --help says more)
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
 #include <memory>
+#include <string>
 
+#include "cli.h"
 #include "tow_sim/core/constants.h"
 #include "tow_sim/core/run/tow_run.h"
 #include "tow_sim/scenario/ship_path.h"
@@ -16,6 +18,41 @@
 namespace
 {
 using namespace tow_sim;
+
+constexpr char kTool[] = "tow_sim_demo";
+constexpr char kUsage[] = "tow_sim_demo [DURATION]";
+constexpr char kHelp[] = R"(
+The core alone, without roscore: the default 500 m cable and the example vehicle (2 m long, 0.3 m
+diameter, tail fins) towed straight at 2 m/s from a straight initial line until the shape settles,
+then +0.2 rad of elevator two minutes before the end.
+
+Arguments:
+  DURATION     the simulated time [s], a number in [60, 1e6] (default 900).
+  -h, --help   prints this help and exits.
+
+Output: a table on stdout, a line per simulated minute (time [s], depth [m], pitch [deg], layback
+[m], diversion [m], the tension at the ship and at the vehicle [N], elevator [deg]), then the tow
+force on the ship and the run's speed; no file.
+Exit codes: 0 done; 1 the run failed; 2 bad arguments.
+)";
+
+// The duration [s] from the command line: "" or what is wrong with it.
+std::string parseDuration(int argc, char** argv, double& duration)
+{
+  duration = 900.0;
+  if (argc > 2)
+    return "takes at most one argument, the duration [s]";
+  if (argc < 2)
+    return "";
+  const std::string text = argv[1];
+  char* end = nullptr;
+  duration = std::strtod(text.c_str(), &end);
+  if (end != text.c_str() && *end == '\0' && duration >= 60.0 && duration <= 1e6)
+    return "";
+  if (text[0] == '-' && end == text.c_str())
+    return "unknown argument '" + text + "'";
+  return "duration: '" + text + "' is not a number of seconds in [60, 1e6]";
+}
 
 // The ship straight along +x at 2 m/s, the tow point at its reference point; a straight initial line;
 // +0.2 rad of elevator two minutes before the end.
@@ -47,12 +84,12 @@ void printLine(const TowSnapshot& s)
 
 int main(int argc, char** argv)
 {
-  const double duration = argc > 1 ? std::atof(argv[1]) : 900.0;
-  if (!(duration >= 60.0 && duration <= 1e6))
-  {
-    std::fprintf(stderr, "tow_sim_demo: duration = %s is out of range: must be in [60, 1e6] [s]\n", argv[1]);
-    return 2;
-  }
+  if (cli::wantsHelp(argc, argv))
+    return cli::printHelp(kUsage, kHelp);
+  double duration = 0.0;
+  const std::string wrong = parseDuration(argc, argv, duration);
+  if (!wrong.empty())
+    return cli::fail(kTool, kUsage, wrong);
   try
   {
     const Scenario sc = demoScenario(duration);

@@ -16,19 +16,39 @@
 #include <system_error>
 #include <vector>
 
+#include "cli.h"
 #include "tow_sim/scenario/towing_chart.h"
 
 namespace
 {
 using namespace tow_sim;
 
+constexpr char kTool[] = "tow_sim_modes";
+constexpr char kUsage[] = "tow_sim_modes --config FILE.yaml --speed U [--cable-out L] [--count N] [--out DIR]";
+constexpr char kHelp[] = R"(
+The natural periods, damping ratios and mode shapes of a configuration's steady tow, without
+roscore.
+
+Options:
+  --config FILE.yaml   the configuration, in the node's YAML format (config/tow_sim.yaml). Required.
+  --speed U            the ship's speed [m/s], a number in [-20, 20]. Required.
+  --cable-out L        the length of cable out [m], a number in [1e-3, 1e5] (default the
+                       configuration's cable.length).
+  --count N            how many modes to print and write, the lowest frequency first, a number in
+                       [1, 1e6] (default 10).
+  --out DIR            the output folder, made if it is missing (default: no files, the table only).
+  -h, --help           prints this help and exits.
+
+Output: a table of the first N modes on stdout (period [s], frequency [rad/s], damping ratio,
+dominant motion); with --out, DIR/modes.csv (index, period [s], frequency [rad/s], damping_ratio,
+dominant) and DIR/mode_shapes.csv (mode, joint, dx, dy, dz: the joints' displacements, the largest
+1); see docs/tools.md#natural-modes-tow_sim_modes.
+Exit codes: 0 done; 2 bad arguments or configuration; 3 no steady tow found; 4 cannot write DIR.
+)";
+
 int usage(const std::string& why)
 {
-  std::fprintf(stderr,
-               "tow_sim_modes: %s\nusage: tow_sim_modes --config FILE.yaml --speed U [--cable-out L] [--count N] "
-               "[--out DIR]\n",
-               why.c_str());
-  return 2;
+  return cli::fail(kTool, kUsage, why);
 }
 
 double number(const char* text, const std::string& option, double low, double high)
@@ -69,6 +89,8 @@ int write(const std::string& dir, const std::vector<Mode>& modes, size_t count)
 
 int main(int argc, char** argv)
 {
+  if (cli::wantsHelp(argc, argv))
+    return cli::printHelp(kUsage, kHelp);
   std::string config_path, out_dir;
   const char *speed = nullptr, *cable_out = nullptr, *count = nullptr;
   for (int i = 1; i < argc; ++i)

@@ -22,6 +22,7 @@
 #include <string>
 #include <system_error>
 
+#include "cli.h"
 #include "tow_sim/config/config.h"
 #include "tow_sim/config/nav_params.h"
 #include "tow_sim/core/io/measurement_csv.h"
@@ -33,14 +34,39 @@ namespace
 {
 using namespace tow_sim;
 
+constexpr char kTool[] = "tow_sim_nav";
+constexpr char kUsage[] =
+    "tow_sim_nav --config FILE.yaml --measurements IN.csv --out DIR\n"
+    "       tow_sim_nav --config FILE.yaml --bag SURVEY.bag [--topics PREFIX] [--nav-config NODE.yaml]\n"
+    "                   --out DIR";
+constexpr char kHelp[] = R"(
+Where the towfish was, reprocessed offline from a survey's measurements with the cable model, beside
+the layback rules survey software uses, without roscore (docs/survey.md).
+
+Options:
+  --config FILE.yaml       the configuration, in the node's YAML format; its nav: section and
+                           tow_point [m] set the estimator. Required.
+  --measurements IN.csv    the survey's rows, in measurements.csv's columns (tow_sim_batch writes
+                           one for a scenario with sensors). This or --bag is required.
+  --bag SURVEY.bag         a bag of the survey/ topics tow_nav_node subscribes (the catkin build
+                           only); the rows' t are seconds after the bag's first stamp (printed).
+  --topics PREFIX          the namespace of the bag's survey/ topics (default /).
+  --nav-config NODE.yaml   tow_nav_node's keys for the bag (its origin, heading convention, depth
+                           source; config/tow_nav.yaml). Default: tow_nav_node's defaults.
+  --out DIR                the output folder, made if it is missing. Required.
+  -h, --help               prints this help and exits.
+
+Output: DIR/estimate.csv (t [s]; x, y, z: the towfish's CG in the world frame, ENU [m]; sigma_x,
+sigma_y, sigma_z: their standard deviations [m]; layback, cross_track [m]; a row per input row,
+empty cells until the model has started) and DIR/baselines.csv (t [s]; pythagoras_x, pythagoras_y,
+track_x, track_y, catenary_x, catenary_y [m]: the layback rules' positions; empty cells until a ship
+fix, a cable out and a depth have come); a summary on stdout.
+Exit codes: 0 done; 2 bad arguments, configuration or measurements; 4 cannot write DIR.
+)";
+
 int usage(const std::string& why)
 {
-  std::fprintf(stderr,
-               "tow_sim_nav: %s\nusage: tow_sim_nav --config FILE.yaml --measurements IN.csv --out DIR\n"
-               "       tow_sim_nav --config FILE.yaml --bag SURVEY.bag [--topics PREFIX] [--nav-config NODE.yaml] "
-               "--out DIR\n",
-               why.c_str());
-  return 2;
+  return cli::fail(kTool, kUsage, why);
 }
 
 struct Args
@@ -161,6 +187,8 @@ int run(const Args& args)
 
 int main(int argc, char** argv)
 {
+  if (cli::wantsHelp(argc, argv))
+    return cli::printHelp(kUsage, kHelp);
   Args a;
   const std::map<std::string, std::string*> options = {
     { "--config", &a.config }, { "--measurements", &a.measurements }, { "--bag", &a.bag },

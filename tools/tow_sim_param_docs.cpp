@@ -10,10 +10,39 @@
 #include <sstream>
 #include <string>
 
+#include "cli.h"
 #include "tow_sim/scenario/param_docs.h"
 
 namespace
 {
+constexpr char kTool[] = "tow_sim_param_docs";
+constexpr char kUsage[] = "tow_sim_param_docs [--check] DOCS.md CONFIG.yaml";
+constexpr char kHelp[] = R"(
+Writes the parameter documentation generated from the parameter tables: each table of DOCS.md
+between <!-- params:NAME --> and <!-- /params --> and the whole of CONFIG.yaml (make docs gives it
+docs/parameters.md and config/tow_sim.yaml).
+
+Arguments:
+  DOCS.md       the markdown file whose tables it rewrites (any path). Required.
+  CONFIG.yaml   the configuration file it writes whole, every key with its unit. Required.
+  --check       only checks: writes nothing, and says on stdout whether both files are current.
+  -h, --help    prints this help and exits.
+
+Output: DOCS.md and CONFIG.yaml rewritten in place (without --check).
+Exit codes: 0 done (with --check: both files are current); 1 with --check: either is out of date
+(run make docs); 2 bad arguments or a file that cannot be read.
+)";
+
+// "" or what is wrong with the arguments; check is --check's presence.
+std::string parseArguments(int argc, char** argv, bool& check)
+{
+  check = argc > 1 && !std::strcmp(argv[1], "--check");
+  for (int i = check ? 2 : 1; i < argc; ++i)
+    if (argv[i][0] == '-')
+      return std::string("unknown argument '") + argv[i] + "'";
+  return argc == (check ? 4 : 3) ? "" : "needs the two files DOCS.md and CONFIG.yaml";
+}
+
 std::string readFile(const std::string& path)
 {
   std::ifstream in(path);
@@ -27,12 +56,12 @@ std::string readFile(const std::string& path)
 
 int main(int argc, char** argv)
 {
-  const bool check = argc > 1 && !std::strcmp(argv[1], "--check");
-  if (argc != (check ? 4 : 3))
-  {
-    std::fprintf(stderr, "usage: tow_sim_param_docs [--check] docs/parameters.md config/tow_sim.yaml\n");
-    return 2;
-  }
+  if (tow_sim::cli::wantsHelp(argc, argv))
+    return tow_sim::cli::printHelp(kUsage, kHelp);
+  bool check = false;
+  const std::string wrong = parseArguments(argc, argv, check);
+  if (!wrong.empty())
+    return tow_sim::cli::fail(kTool, kUsage, wrong);
   const std::string docs_path = argv[check ? 2 : 1], config_path = argv[check ? 3 : 2];
   try
   {

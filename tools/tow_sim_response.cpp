@@ -25,6 +25,7 @@
 #include <system_error>
 #include <vector>
 
+#include "cli.h"
 #include "tow_sim/core/constants.h"
 #include "tow_sim/scenario/sea_state.h"
 #include "tow_sim/scenario/towing_chart.h"
@@ -33,14 +34,47 @@ namespace
 {
 using namespace tow_sim;
 
+constexpr char kTool[] = "tow_sim_response";
+constexpr char kUsage[] =
+    "tow_sim_response --config FILE.yaml --speed U [--cable-out L] --input heave|surge|sway|pitch\n"
+    "                        --periods FROM:TO:STEP [--tow-point X,Y,Z] --out DIR\n"
+    "       tow_sim_response --scenario FILE.yaml [--cable-out L] --out DIR";
+constexpr char kHelp[] = R"(
+The steady tow's response to the ship's motion in the frequency domain, without roscore: to the tow
+point's heave, surge or sway or the ship's pitch over a range of periods (first form), or to a
+scenario's sea state through the ship's RAOs (second form). Linear, about the steady tow.
+
+Options of the first form (--config, --speed, --input and --periods are required):
+  --config FILE.yaml       the configuration, in the node's YAML format (config/tow_sim.yaml).
+  --speed U                the ship's speed [m/s].
+  --input MOTION           the ship's motion: heave, surge or sway (the tow point moving 1 m) or
+                           pitch (the ship pitching 1 rad, bow down positive, about its reference
+                           point).
+  --periods FROM:TO:STEP   the periods [s], each in (0, 1e5]; one value is a single period.
+  --tow-point X,Y,Z        the tow point [m] in the ship frame (FLU) from the ship's reference point
+                           (default -20,0,0); it sets how pitch moves the tow point.
+Options of the second form:
+  --scenario FILE.yaml     the scenario whose sea, ship (speed, heading, RAOs, tow point) and
+                           configuration to take. Required; only --cable-out and --out go with it.
+Options of both forms:
+  --cable-out L            the length of cable out [m] (default the configuration's or the
+                           scenario's cable.length).
+  --out DIR                the output folder, made if it is missing. Required.
+  -h, --help               prints this help and exits.
+
+Output: DIR/response.csv (period [s]; for vehicle_heave, vehicle_surge, vehicle_sway [m],
+vehicle_pitch [rad], tension_ship and tension_vehicle [N], the amplitude per metre of input (per
+radian for pitch) and the phase [deg] relative to the input's displacement). The second form writes
+DIR/sea_state.csv (per wave component, the amplitudes [m, rad, N] of the tow point's heave and the
+outputs above) and prints their standard deviations and significant amplitudes on stdout. The
+columns: docs/tools.md#response-to-ship-motion-tow_sim_response.
+Exit codes: 0 done; 2 bad arguments, configuration or scenario; 3 no steady tow found; 4 cannot
+write DIR.
+)";
+
 int usage(const std::string& why)
 {
-  std::fprintf(stderr,
-               "tow_sim_response: %s\nusage: tow_sim_response --config FILE.yaml --speed U [--cable-out L] --input "
-               "heave|surge|sway|pitch --periods FROM:TO:STEP [--tow-point X,Y,Z] --out DIR\n"
-               "       tow_sim_response --scenario FILE.yaml [--cable-out L] --out DIR\n",
-               why.c_str());
-  return 2;
+  return cli::fail(kTool, kUsage, why);
 }
 
 Eigen::Vector3d towPoint(const std::string& text)
@@ -138,6 +172,8 @@ int seaState(const std::string& scenario_path, const std::string& cable_out, con
 
 int main(int argc, char** argv)
 {
+  if (cli::wantsHelp(argc, argv))
+    return cli::printHelp(kUsage, kHelp);
   std::string config_path, scenario, speed, cable_out, input, periods, tow_point, out_dir;
   for (int i = 1; i < argc; ++i)
   {

@@ -17,6 +17,7 @@
 #include <string>
 #include <system_error>
 
+#include "cli.h"
 #include "tow_sim/core/constants.h"
 #include "tow_sim/scenario/towing_chart.h"
 
@@ -24,13 +25,40 @@ namespace
 {
 using namespace tow_sim;
 
+constexpr char kTool[] = "tow_sim_strumming";
+constexpr char kUsage[] =
+    "tow_sim_strumming --config FILE.yaml --speed U [--cable-out L]\n"
+    "                         [--current SPEED:DIRECTION_DEG] [--bandwidth B] [--out DIR]";
+constexpr char kHelp[] = R"(
+Where a configuration's steady tow sheds vortices and which string modes of its cable that shedding
+can lock into (docs/physics.md section 13), without roscore.
+
+Options:
+  --config FILE.yaml              the configuration, in the node's YAML format
+                                  (config/tow_sim.yaml). Required.
+  --speed U                       the ship's speed [m/s], a number in [-20, 20]. Required.
+  --cable-out L                   the length of cable out [m], a number in [1e-3, 1e5] (default the
+                                  configuration's cable.length).
+  --current SPEED:DIRECTION_DEG   a uniform current of SPEED [m/s] in [-20, 20] flowing toward
+                                  DIRECTION_DEG [deg] in [-360, 360] from the ship's heading,
+                                  counter-clockwise. Default: no current.
+  --bandwidth B                   the lock-in band's half width as a fraction of the shedding
+                                  frequency, a number in [0, 1) (default 0.2: a mode locks in within
+                                  +-20 %).
+  --out DIR                       the output folder, made if it is missing (default: no files, the
+                                  table only).
+  -h, --help                      prints this help and exits.
+
+Output: on stdout, each span's (the cable between point bodies) fundamental [Hz], the modes its
+cable can lock into and the dominant one; with --out, DIR/strumming.csv (a row per cable segment)
+and DIR/strumming_spans.csv (a row per span); the columns:
+docs/tools.md#strumming-tow_sim_strumming.
+Exit codes: 0 done; 2 bad arguments or configuration; 3 no steady tow found; 4 cannot write DIR.
+)";
+
 int usage(const std::string& why)
 {
-  std::fprintf(stderr,
-               "tow_sim_strumming: %s\nusage: tow_sim_strumming --config FILE.yaml --speed U [--cable-out L] "
-               "[--current SPEED:DIRECTION_DEG] [--bandwidth B] [--out DIR]\n",
-               why.c_str());
-  return 2;
+  return cli::fail(kTool, kUsage, why);
 }
 
 double number(const std::string& text, const std::string& option, double low, double high)
@@ -114,6 +142,8 @@ void print(const StrummingAnalysis& a)
 
 int main(int argc, char** argv)
 {
+  if (cli::wantsHelp(argc, argv))
+    return cli::printHelp(kUsage, kHelp);
   std::string config_path, out_dir, speed, cable_out, current_text, bandwidth;
   for (int i = 1; i < argc; ++i)
   {
