@@ -98,7 +98,7 @@ int main(int argc, char** argv)
       precision = static_cast<int>(digits);
     }
     else
-      return usage(std::string("unknown argument '") + argv[i] + "'");
+      return usage(tow_sim::cli::badArgument(kUsage, argc, argv, i));
   }
   if (scenario_path.empty() || out_dir.empty())
     return usage("both --scenario and --out are needed");

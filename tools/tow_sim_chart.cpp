@@ -110,7 +110,7 @@ std::string parseArguments(int argc, char** argv, Options& o)
     else if (!std::strcmp(argv[i], "--no-plot"))
       o.plot = false;
     else
-      return std::string("unknown argument '") + argv[i] + "'";
+      return tow_sim::cli::badArgument(kUsage, argc, argv, i);
   }
   if (o.config_path.empty())
     return "--config is needed";

@@ -107,7 +107,7 @@ int main(int argc, char** argv)
     else if (!std::strcmp(argv[i], "--out") && has_value)
       out_dir = argv[++i];
     else
-      return usage(std::string("unknown argument '") + argv[i] + "'");
+      return usage(tow_sim::cli::badArgument(kUsage, argc, argv, i));
   }
   if (config_path.empty() || !speed)
     return usage("--config and --speed are needed");

@@ -190,7 +190,7 @@ int main(int argc, char** argv)
       if (!std::strcmp(argv[i], flag) && has_value)
         target = field;
     if (!target)
-      return usage(std::string("unknown argument '") + argv[i] + "'");
+      return usage(tow_sim::cli::badArgument(kUsage, argc, argv, i));
     *target = argv[++i];
   }
   if (!scenario.empty())

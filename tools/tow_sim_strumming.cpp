@@ -162,7 +162,7 @@ int main(int argc, char** argv)
     else if (arg == "--out" && has_value)
       out_dir = argv[++i];
     else
-      return usage("unknown argument '" + arg + "'");
+      return usage(tow_sim::cli::badArgument(kUsage, argc, argv, i));
   }
   if (config_path.empty() || speed.empty())
     return usage("--config and --speed are needed");

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <string>
 #include <system_error>
+#include <utility>
 #include <vector>
 
 namespace
@@ -147,6 +148,21 @@ TEST(ToolHelp, AnUnknownOptionIsRefusedNamingItAndPointingToHelp)
 
 // The rviz script answers --help without asking the master or starting rviz (it used to hand --help to rviz,
 // which aborts without a display).
+// An option given last without its value is named as such, not as an unknown argument.
+TEST(ToolHelp, AnOptionWithoutItsValueSaysSo)
+{
+  const std::pair<std::string, std::string> cases[] = {
+    { "tow_sim_batch", "--scenario" },   { "tow_sim_chart", "--config" },  { "tow_sim_modes", "--speed" },
+    { "tow_sim_response", "--periods" }, { "tow_sim_strumming", "--out" }, { "tow_sim_nav", "--measurements" }
+  };
+  for (const auto& [tool, option] : cases)
+  {
+    const Outcome o = run(tool, option);
+    EXPECT_EQ(o.status, 2) << tool;
+    EXPECT_NE(o.err.find(option + " needs a value"), std::string::npos) << tool << ": " << o.err;
+  }
+}
+
 TEST(ToolHelp, TheRvizScriptAnswersHelpWithoutStartingRviz)
 {
   const Outcome o = runProgram("timeout 30 " + std::string(TOW_SIM_SOURCE_DIR) + "/scripts/tow_sim_rviz", "--help");
