@@ -13,7 +13,7 @@ export PATH := /usr/bin:/bin:$(PATH)
 CATKIN_ARGS := -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3
 JOBS ?= 2
 
-.PHONY: deps workspace build test sanitize fuzz soak accuracy demo offline-demo screenshot bench survey-bench docs clean
+.PHONY: deps workspace build test sanitize fuzz soak accuracy demo offline-demo screenshot bench bench-docs survey-bench docs clean
 SAN_DIR := $(WS)/sanitize
 SAN_FLAGS := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all
 FUZZ_DIR := $(WS)/fuzz
@@ -125,6 +125,10 @@ bench: build
 	@for b in $(WS)/devel/lib/tow_sim/bench_*; do echo "== $$b"; $$b; done
 	@echo "== bench/bench_python.py"
 	@source $(WS)/devel/setup.bash && TOW_SIM_BIN=$(WS)/devel/lib/tow_sim /usr/bin/python3 $(REPO)/bench/bench_python.py
+
+# Runs bench_steppers and writes its tables into docs/benchmarks.md with the commit and date (a few minutes).
+bench-docs: build
+	/usr/bin/python3 $(REPO)/scripts/bench_docs.py $(WS)/devel/lib/tow_sim --doc $(REPO)/docs/benchmarks.md
 
 # The towfish estimator against the layback rules on a lawn-mower survey (docs/survey.md): about 2 minutes.
 survey-bench: build

@@ -1,0 +1,100 @@
+"""scripts/bench_docs.py: the steppers' tables of docs/benchmarks.md written from a benchmark run."""
+import importlib.util
+import json
+import os
+
+import pytest
+
+SOURCE = os.environ.get("TOW_SIM_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
+_spec = importlib.util.spec_from_file_location("bench_docs", os.path.join(SOURCE, "scripts", "bench_docs.py"))
+bench_docs = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(bench_docs)
+
+DOC = """# Benchmarks
+
+Prose before.
+
+<!-- bench:steppers -->
+an old table
+<!-- /bench -->
+
+Prose between, 2035× typed by hand stays prose.
+
+<!-- bench:steppers-more -->
+<!-- /bench -->
+
+Prose after.
+"""
+
+
+def run_of(entries, date="2026-12-05T20:44:38+00:00"):
+    benchmarks = []
+    for name, counters in entries.items():
+        benchmarks.append(dict({"name": name + "/iterations:5", "run_type": "iteration"}, **counters))
+    return {"context": {"date": date, "num_cpus": 2, "mhz_per_cpu": 2695, "load_avg": [0.5, 1.0, 1.5]},
+            "benchmarks": benchmarks}
+
+
+RUN = run_of({
+    "steady/implicit/nu:100": {"realtime": 2035.4},
+    "turn/implicit/nu:1000": {"realtime": 98.92},
+    "steady/rk4/nu:50": {"realtime": 1560.2, "step_ms": 108.0},
+    "deep6km/dopri5/nu:1000": {"realtime": 7.31},
+    "parted/implicit_elastic_ea1e8/nu:100": {"realtime": 0.8912},
+    "two_part/implicit/nu:600+100": {"realtime": 409.3},
+})
+
+
+def table_rows(text, marker):
+    block = text.split(f"<!-- bench:{marker} -->")[1].split("<!-- /bench -->")[0]
+    return [line for line in block.splitlines() if line.startswith("|")]
+
+
+def test_each_figure_lands_in_its_row_and_column_and_the_rest_are_dashes(tmp_path):
+    doc = tmp_path / "benchmarks.md"
+    doc.write_text(DOC)
+    bench_docs.write_doc(str(doc), RUN, "abc1234")
+    text = doc.read_text()
+    rows = table_rows(text, "steppers")
+    head = [c.strip() for c in rows[0].strip("|").split("|")]
+    assert head[:3] == ["ν", "steady dopri5", "steady rk4"]
+    by_nu = {r.strip("|").split("|")[0].strip(): [c.strip() for c in r.strip("|").split("|")] for r in rows[2:]}
+    assert by_nu["100"][head.index("steady implicit")] == "2035×"
+    assert by_nu["1000"][head.index("turn implicit")] == "98.9×"
+    assert by_nu["50"][head.index("steady rk4")] == "1560× (108 ms)"
+    assert by_nu["deep 6 km, ν = 1000"][head.index("steady dopri5")] == "7.31×"
+    assert by_nu["2000"][head.index("steady implicit")] == "—"
+    more = "\n".join(table_rows(text, "steppers-more"))
+    assert "| parted elastic cable, 0.10-0.13 s after the parting, implicit | 100 | 0.891× |" in more
+    assert "| two-part deep tow, implicit | 600+100 | 409× |" in more
+    assert "| its armoured cable alone, implicit | 700 | — |" in more
+
+
+def test_the_provenance_names_commit_date_and_machine_and_prose_is_untouched(tmp_path):
+    doc = tmp_path / "benchmarks.md"
+    doc.write_text(DOC)
+    bench_docs.write_doc(str(doc), RUN, "abc1234")
+    text = doc.read_text()
+    assert text.count("at commit abc1234 on 2026-12-05 (2 CPUs at 2695 MHz, load average 0.50 at the start)") == 2
+    assert "an old table" not in text
+    for prose in ("Prose before.", "Prose between, 2035× typed by hand stays prose.", "Prose after."):
+        assert prose in text
+    once = text
+    bench_docs.write_doc(str(doc), RUN, "abc1234")
+    assert doc.read_text() == once  # a second write changes nothing
+
+
+def test_a_missing_marker_or_an_empty_run_is_refused_and_the_document_kept(tmp_path):
+    doc = tmp_path / "benchmarks.md"
+    doc.write_text(DOC.replace("<!-- bench:steppers-more -->\n", ""))
+    before = doc.read_text()
+    with pytest.raises(ValueError, match="bench:steppers-more"):
+        bench_docs.write_doc(str(doc), RUN, "abc1234")
+    assert doc.read_text() == before
+    doc.write_text(DOC)
+    with pytest.raises(ValueError, match="none of bench_steppers"):
+        bench_docs.write_doc(str(doc), run_of({"BM_Other": {"realtime": 1.0}}), "abc1234")
+    saved = tmp_path / "run.json"
+    saved.write_text(json.dumps(run_of({})))
+    assert bench_docs.main(["unused", "--doc", str(doc), "--json", str(saved)]) == 2
+    assert doc.read_text() == DOC
