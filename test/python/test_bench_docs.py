@@ -98,3 +98,12 @@ def test_a_missing_marker_or_an_empty_run_is_refused_and_the_document_kept(tmp_p
     saved.write_text(json.dumps(run_of({})))
     assert bench_docs.main(["unused", "--doc", str(doc), "--json", str(saved)]) == 2
     assert doc.read_text() == DOC
+
+
+def test_the_shipped_document_has_both_blocks_filled():
+    with open(os.path.join(SOURCE, "docs", "benchmarks.md"), encoding="utf-8") as f:
+        text = f.read()
+    for marker in ("steppers", "steppers-more"):
+        rows = table_rows(text, marker)
+        assert len(rows) > 3, marker
+        assert "Written by `scripts/bench_docs.py`" in text.split(f"<!-- bench:{marker} -->")[1]
