@@ -1,18 +1,20 @@
 #!/usr/bin/env python3
-"""Writes the stepper benchmarks' figures into docs/benchmarks.md from a run, with the commit and date they
-came from (issue 28: figures that cannot go stale).
+"""Writes the benchmarks' figures into docs/benchmarks.md from a run, with the commit and date they came from
+(issue 28: figures that cannot go stale).
 
-    bench_docs.py BIN_DIR [--doc docs/benchmarks.md] [--json RUN.json] [--save-json RUN.json]
+    bench_docs.py BIN_DIR [--doc docs/benchmarks.md] [--json RUN.json ...] [--save-json DIR]
 
-Runs BIN_DIR/bench_steppers (Google Benchmark, JSON output), or reads a saved run with --json, and replaces
-what lies between the markers
+Runs BIN_DIR/bench_chain, bench_steppers and bench_chart (Google Benchmark, JSON output), or reads saved runs
+with --json (each names its executable), and replaces what lies between the markers
 
-    <!-- bench:steppers -->  ...  <!-- /bench -->        the steppers against nu, steady and turn, and the deep tow
-    <!-- bench:steppers-more -->  ...  <!-- /bench -->   the elastic, parted and two-part rows
+    <!-- bench:rhs -->  ...  <!-- /bench -->             bench_chain: one right-hand side, O(nu) and dense
+    <!-- bench:steppers -->  ...  <!-- /bench -->        bench_steppers: the steppers against nu, and the deep tow
+    <!-- bench:steppers-more -->  ...  <!-- /bench -->   bench_steppers: the elastic, parted and two-part rows
+    <!-- bench:chart -->  ...  <!-- /bench -->           bench_chart: a 20 x 10 towing chart
 
-with tables of simulated seconds per CPU second (the benchmarks' `realtime` counter) and a line saying which
-commit, date and machine they came from. A benchmark missing from the run shows as a dash. Exit 2 when a
-marker is missing from the document or the run holds none of the benchmarks.
+with tables (simulated seconds per CPU second: the `realtime` counter; CPU times per call) and a line saying
+which commit, date and machine they came from. A benchmark missing from the run shows as a dash. Exit 2 when
+a marker is missing from the document or a run holds none of its benchmarks.
 """
 import argparse
 import datetime
@@ -22,6 +24,8 @@ import re
 import subprocess
 import sys
 
+BENCHES = ("bench_chain", "bench_steppers", "bench_chart")
+RHS_SEGMENTS = (10, 30, 100, 1000, 5000)
 SEGMENTS = (50, 100, 200, 1000, 2000)
 STEPPERS = (("dopri5", "dopri5"), ("rk4", "rk4"), ("implicit", "implicit"), ("implicit_ros2", "ros2"))
 MORE = (
@@ -39,6 +43,38 @@ def rate(value):
     if value >= 100:
         return f"{value:.0f}×"
     return f"{value:.3g}×"
+
+
+def seconds_of(b):
+    """A benchmark's CPU time per iteration [s]."""
+    return b["cpu_time"] * {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}[b.get("time_unit", "ns")]
+
+
+def duration(b):
+    """A benchmark's CPU time per iteration, in the unit that reads best."""
+    seconds = seconds_of(b)
+    for unit, scale in (("s", 1.0), ("ms", 1e-3), ("µs", 1e-6)):
+        if seconds >= scale:
+            return f"{seconds / scale:.3g} {unit}"
+    return f"{seconds / 1e-9:.3g} ns"
+
+
+def rhs_table(found):
+    lines = ["| ν | one RHS, O(ν) sweep | one RHS, dense reference |", "|---|---|---|"]
+    for nu in RHS_SEGMENTS:
+        sweep, dense = found.get(f"BM_RhsSweep/{nu}"), found.get(f"BM_RhsDense/{nu}")
+        lines.append(f"| {nu} | {duration(sweep) if sweep else '—'} | {duration(dense) if dense else '—'} |")
+    small, large = found.get("BM_RhsSweep/100"), found.get("BM_RhsSweep/1000")
+    if small and large:
+        lines += ["", f"The sweep at ν = 1000 costs {seconds_of(large) / seconds_of(small):.3g}× its cost at ν = 100."]
+    return lines
+
+
+def chart_lines(found):
+    b = found.get("BM_TowingChart20x10")
+    if b is None:
+        return ["The chart: —"]
+    return [f"The 200 steady tows of the chart: {duration(b)} of CPU."]
 
 
 def results(run):
@@ -82,15 +118,15 @@ def more_table(found):
     return lines
 
 
-def provenance(run, commit):
+def provenance(run, commit, bench):
     context = run.get("context", {})
     date = context.get("date", "")[:10] or datetime.date.today().isoformat()
     load = context.get("load_avg", [])
     machine = f"{context.get('num_cpus', '?')} CPUs at {context.get('mhz_per_cpu', '?')} MHz"
     if load:
         machine += f", load average {load[0]:.2f} at the start"
-    return (f"_Written by `scripts/bench_docs.py` from `bench_steppers` at commit {commit} on {date} "
-            f"({machine}): simulated seconds per CPU second; read ratios, the machine is shared._")
+    return (f"_Written by `scripts/bench_docs.py` from `{bench}` at commit {commit} on {date} "
+            f"({machine}); read ratios, the machine is shared._")
 
 
 def replace_block(text, marker, lines):
@@ -102,17 +138,37 @@ def replace_block(text, marker, lines):
     return pattern.sub(lambda _: "\n".join([start] + lines + [end]), text, count=1)
 
 
-def write_doc(doc, run, commit):
-    found = results(run)
-    known = [f"{p}/{s}/nu:{n}" for p in ("steady", "turn") for s, _ in STEPPERS for n in SEGMENTS]
-    known += [pattern.format(n) for pattern, segments, _ in MORE for n in segments]
+def bench_name(run):
+    """Which benchmark program a run came from (its context's executable)."""
+    return os.path.basename(run.get("context", {}).get("executable", ""))
+
+
+def blocks(bench, found):
+    """{marker: lines} a run of `bench` writes, or ValueError when it holds none of that program's benchmarks."""
+    if bench == "bench_chain":
+        out, known = {"rhs": rhs_table(found)}, [f"BM_RhsSweep/{n}" for n in RHS_SEGMENTS]
+    elif bench == "bench_chart":
+        out, known = {"chart": chart_lines(found)}, ["BM_TowingChart20x10"]
+    elif bench == "bench_steppers":
+        out = {"steppers": steppers_table(found), "steppers-more": more_table(found)}
+        known = [f"{p}/{s}/nu:{n}" for p in ("steady", "turn") for s, _ in STEPPERS for n in SEGMENTS]
+        known += [pattern.format(n) for pattern, segments, _ in MORE for n in segments]
+    else:
+        raise ValueError(f"a run of '{bench}', not of {', '.join(BENCHES)}")
     if not any(name in found for name in known):
-        raise ValueError("the run holds none of bench_steppers' benchmarks")
+        raise ValueError(f"the run holds none of {bench}'s benchmarks")
+    return out
+
+
+def write_doc(doc, runs, commit):
+    """Writes each run's blocks into `doc` (all or nothing)."""
     with open(doc, encoding="utf-8") as f:
         text = f.read()
-    line = provenance(run, commit)
-    text = replace_block(text, "steppers", [line, ""] + steppers_table(found))
-    text = replace_block(text, "steppers-more", [line, ""] + more_table(found))
+    for run in runs:
+        bench = bench_name(run)
+        line = provenance(run, commit, bench)
+        for marker, lines in blocks(bench, results(run)).items():
+            text = replace_block(text, marker, [line, ""] + lines)
     with open(doc, "w", encoding="utf-8") as f:
         f.write(text)
 
@@ -133,21 +189,26 @@ def main(argv=None):
     parser.add_argument("bin_dir", help="where bench_steppers is (the workspace's devel/lib/tow_sim)")
     repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     parser.add_argument("--doc", default=os.path.join(repo, "docs", "benchmarks.md"), help="the document to write")
-    parser.add_argument("--json", help="a saved run (bench_steppers --benchmark_format=json) instead of running")
-    parser.add_argument("--save-json", help="also save the run here")
+    parser.add_argument("--json", action="append", default=[],
+                        help="a saved run (BENCH --benchmark_format=json) instead of running; repeatable")
+    parser.add_argument("--save-json", help="also save each run here as BENCH.json")
     args = parser.parse_args(argv)
-    if args.json:
-        with open(args.json, encoding="utf-8") as f:
-            run = json.load(f)
-    else:
-        out = subprocess.run([os.path.join(args.bin_dir, "bench_steppers"), "--benchmark_format=json"],
-                             capture_output=True, text=True, check=True).stdout
-        run = json.loads(out)
+    runs = []
+    for path in args.json:
+        with open(path, encoding="utf-8") as f:
+            runs.append(json.load(f))
+    if not args.json:
+        for bench in BENCHES:
+            out = subprocess.run([os.path.join(args.bin_dir, bench), "--benchmark_format=json"], capture_output=True,
+                                 text=True, check=True).stdout
+            runs.append(json.loads(out))
     if args.save_json:
-        with open(args.save_json, "w", encoding="utf-8") as f:
-            json.dump(run, f, indent=1)
+        os.makedirs(args.save_json, exist_ok=True)
+        for run in runs:
+            with open(os.path.join(args.save_json, bench_name(run) + ".json"), "w", encoding="utf-8") as f:
+                json.dump(run, f, indent=1)
     try:
-        write_doc(args.doc, run, commit_of(repo))
+        write_doc(args.doc, runs, commit_of(repo))
     except ValueError as e:
         print(f"bench_docs.py: {args.doc}: {e}", file=sys.stderr)
         return 2

@@ -23,15 +23,23 @@ Prose between, 2035× typed by hand stays prose.
 <!-- bench:steppers-more -->
 <!-- /bench -->
 
+<!-- bench:rhs -->
+<!-- /bench -->
+
+<!-- bench:chart -->
+<!-- /bench -->
+
 Prose after.
 """
 
 
-def run_of(entries, date="2026-12-05T20:44:38+00:00"):
+def run_of(entries, bench="bench_steppers", date="2026-12-05T20:44:38+00:00"):
     benchmarks = []
     for name, counters in entries.items():
-        benchmarks.append(dict({"name": name + "/iterations:5", "run_type": "iteration"}, **counters))
-    return {"context": {"date": date, "num_cpus": 2, "mhz_per_cpu": 2695, "load_avg": [0.5, 1.0, 1.5]},
+        suffix = "/iterations:5" if bench == "bench_steppers" else ""
+        benchmarks.append(dict({"name": name + suffix, "run_type": "iteration"}, **counters))
+    return {"context": {"date": date, "executable": "devel/lib/tow_sim/" + bench, "num_cpus": 2,
+                        "mhz_per_cpu": 2695, "load_avg": [0.5, 1.0, 1.5]},
             "benchmarks": benchmarks}
 
 
@@ -43,6 +51,11 @@ RUN = run_of({
     "parted/implicit_elastic_ea1e8/nu:100": {"realtime": 0.8912},
     "two_part/implicit/nu:600+100": {"realtime": 409.3},
 })
+CHAIN = run_of({"BM_RhsSweep/100": {"cpu_time": 20.0, "time_unit": "us"},
+                "BM_RhsSweep/1000": {"cpu_time": 199.0, "time_unit": "us"},
+                "BM_RhsDense/10": {"cpu_time": 95123.0, "time_unit": "ns"}}, bench="bench_chain")
+CHART = run_of({"BM_TowingChart20x10": {"cpu_time": 84.2, "time_unit": "ms"}}, bench="bench_chart")
+RUNS = [RUN, CHAIN, CHART]
 
 
 def table_rows(text, marker):
@@ -53,7 +66,7 @@ def table_rows(text, marker):
 def test_each_figure_lands_in_its_row_and_column_and_the_rest_are_dashes(tmp_path):
     doc = tmp_path / "benchmarks.md"
     doc.write_text(DOC)
-    bench_docs.write_doc(str(doc), RUN, "abc1234")
+    bench_docs.write_doc(str(doc), RUNS, "abc1234")
     text = doc.read_text()
     rows = table_rows(text, "steppers")
     head = [c.strip() for c in rows[0].strip("|").split("|")]
@@ -68,19 +81,26 @@ def test_each_figure_lands_in_its_row_and_column_and_the_rest_are_dashes(tmp_pat
     assert "| parted elastic cable, 0.10-0.13 s after the parting, implicit | 100 | 0.891× |" in more
     assert "| two-part deep tow, implicit | 600+100 | 409× |" in more
     assert "| its armoured cable alone, implicit | 700 | — |" in more
+    rhs = table_rows(text, "rhs")
+    assert "| 100 | 20 µs | — |" in rhs
+    assert "| 10 | — | 95.1 µs |" in rhs
+    assert "| 5000 | — | — |" in rhs
+    assert "The sweep at ν = 1000 costs 9.95× its cost at ν = 100." in text
+    assert "The 200 steady tows of the chart: 84.2 ms of CPU." in text
 
 
 def test_the_provenance_names_commit_date_and_machine_and_prose_is_untouched(tmp_path):
     doc = tmp_path / "benchmarks.md"
     doc.write_text(DOC)
-    bench_docs.write_doc(str(doc), RUN, "abc1234")
+    bench_docs.write_doc(str(doc), RUNS, "abc1234")
     text = doc.read_text()
-    assert text.count("at commit abc1234 on 2026-12-05 (2 CPUs at 2695 MHz, load average 0.50 at the start)") == 2
+    assert text.count("at commit abc1234 on 2026-12-05 (2 CPUs at 2695 MHz, load average 0.50 at the start)") == 4
+    assert "from `bench_chain` at commit" in text.split("<!-- bench:rhs -->")[1].split("<!-- /bench -->")[0]
     assert "an old table" not in text
     for prose in ("Prose before.", "Prose between, 2035× typed by hand stays prose.", "Prose after."):
         assert prose in text
     once = text
-    bench_docs.write_doc(str(doc), RUN, "abc1234")
+    bench_docs.write_doc(str(doc), RUNS, "abc1234")
     assert doc.read_text() == once  # a second write changes nothing
 
 
@@ -89,21 +109,24 @@ def test_a_missing_marker_or_an_empty_run_is_refused_and_the_document_kept(tmp_p
     doc.write_text(DOC.replace("<!-- bench:steppers-more -->\n", ""))
     before = doc.read_text()
     with pytest.raises(ValueError, match="bench:steppers-more"):
-        bench_docs.write_doc(str(doc), RUN, "abc1234")
+        bench_docs.write_doc(str(doc), RUNS, "abc1234")
+    with pytest.raises(ValueError, match="a run of 'bench_other'"):
+        bench_docs.write_doc(str(doc), [run_of({}, bench="bench_other")], "abc1234")
     assert doc.read_text() == before
     doc.write_text(DOC)
     with pytest.raises(ValueError, match="none of bench_steppers"):
-        bench_docs.write_doc(str(doc), run_of({"BM_Other": {"realtime": 1.0}}), "abc1234")
+        bench_docs.write_doc(str(doc), [run_of({"BM_Other": {"realtime": 1.0}})], "abc1234")
     saved = tmp_path / "run.json"
     saved.write_text(json.dumps(run_of({})))
     assert bench_docs.main(["unused", "--doc", str(doc), "--json", str(saved)]) == 2
     assert doc.read_text() == DOC
 
 
-def test_the_shipped_document_has_both_blocks_filled():
+def test_the_shipped_document_has_every_block_filled():
     with open(os.path.join(SOURCE, "docs", "benchmarks.md"), encoding="utf-8") as f:
         text = f.read()
-    for marker in ("steppers", "steppers-more"):
+    for marker in ("rhs", "steppers", "steppers-more"):
         rows = table_rows(text, marker)
         assert len(rows) > 3, marker
         assert "Written by `scripts/bench_docs.py`" in text.split(f"<!-- bench:{marker} -->")[1]
+    assert "The 200 steady tows of the chart:" in text
