@@ -156,6 +156,11 @@ const ParamTable<NumericsParams>& numericsParams()
                   { { "ros34pw2", ImplicitMethod::kRos34pw2 }, { "ros2", ImplicitMethod::kRos2 } },
                   "the implicit steppers' Rosenbrock-W method: ros34pw2 (4 stages, order 3, embedded order 2) "
                   "or ros2 (2 stages, order 2, embedded order 1)")
+          .choice("implicit_frame", &N::implicit_frame,
+                  { { "world", ImplicitFrame::kWorld }, { "tow_point", ImplicitFrame::kTowPoint } },
+                  "the implicit steppers' stages: world (the tow point's motion enters through the first element) "
+                  "or tow_point (the joints relative to the tow point: fine cables in turns take far longer steps; "
+                  "solver.md (S28))")
           .number("abs_tol", &N::abs_tol, "-", 0.0, 1.0, kOpen, "absolute error tolerance of dopri5 (m, m/s)")
           .number("rel_tol", &N::rel_tol, "-", 0.0, 1.0, kOpen, "relative error tolerance of dopri5")
           .number("implicit_position_tol", &N::implicit_position_tol, "m", 0.0, 10.0, kOpen,

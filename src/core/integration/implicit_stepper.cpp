@@ -176,12 +176,22 @@ void ImplicitStepper::solveBlock(Block& block, const std::vector<double>& r, con
   L.cableOut(K) = r_L + gh * L.payoutRate(K);
 }
 
+void ImplicitStepper::stages(const RosenbrockTableau& rw, double t, double h, const std::vector<double>& y,
+                             const std::vector<double>& f0, const ShipMotion& ship, const Derivative& f,
+                             std::vector<double>& y_next, std::vector<double>& error)
+{
+  if (tow_point_frame_)
+    stagesTowPoint(rw, t, h, y, f0, ship, f, y_next, error);
+  else
+    stagesWorld(rw, t, h, y, f0, ship(t), f, y_next, error);
+}
+
 // (S15): W k_i = f(t + c_i h, y + h sum_{j<i} a_ij k_j) + sum_{j<i} c_ij k_j (+ the tow point's k_t,i (v_1, a_1)
 // for the gamma h k_t,i f_t term), each solved in O(nu) by solve(); y_next = y + h sum m_i k_i, error (err) =
 // h sum e_i k_i. Names here: stage_k_[i] is k_i, K_t[i] is k_t,i.
-void ImplicitStepper::stages(const RosenbrockTableau& rw, double t, double h, const std::vector<double>& y,
-                             const std::vector<double>& f0, const ShipEndState& ship, const Derivative& f,
-                             std::vector<double>& y_next, std::vector<double>& error)
+void ImplicitStepper::stagesWorld(const RosenbrockTableau& rw, double t, double h, const std::vector<double>& y,
+                                  const std::vector<double>& f0, const ShipEndState& ship, const Derivative& f,
+                                  std::vector<double>& y_next, std::vector<double>& error)
 {
   const size_t n = y.size();
   stage_k_.resize(rw.stages);
@@ -221,6 +231,100 @@ void ImplicitStepper::stages(const RosenbrockTableau& rw, double t, double h, co
       y_next[q] += h * rw.m[i] * stage_k_[i][q];
       error[q] += h * rw.e[i] * stage_k_[i][q];
     }
+}
+
+// Adds to the joints of the chains that hang from the tow point the change of the tow point's position and
+// velocity from `from` to `to` (scaled by `scale`): S(to) - S(from), S the tow point's state at every joint.
+void ImplicitStepper::shift(std::vector<double>& y, const ShipEndState& from, const ShipEndState& to,
+                            double scale) const
+{
+  const Eigen::Vector3d dp = scale * (to.p_W - from.p_W), dv = scale * (to.v_W - from.v_W);
+  for (const Block& block : blocks_)
+  {
+    if (block.layout.free)
+      continue;
+    block.layout.positions(y).colwise() += dp;
+    block.layout.velocities(y).colwise() += dv;
+  }
+}
+
+// f_z(t', z) = f(t', z + S(t')) - S'(t') for z = y - S(t): the right-hand side relative to the tow point,
+// evaluated at y + S(t') - S(t) (S' the tow point's velocity and acceleration at every joint).
+void ImplicitStepper::relativeDerivative(const Derivative& f, const ShipMotion& ship, double t,
+                                         const ShipEndState& at_t, double t_prime, const std::vector<double>& y,
+                                         std::vector<double>& out)
+{
+  const ShipEndState s = ship(t_prime);
+  shifted_y_ = y;
+  shift(shifted_y_, at_t, s, 1.0);
+  out.resize(y.size());
+  f(t_prime, shifted_y_, out);
+  ShipEndState rate;  // S'(t'): (v, a) in the (p, v) slots
+  rate.p_W = s.v_W;
+  rate.v_W = s.a_W;
+  shift(out, rate, ShipEndState(), 1.0);
+}
+
+// (S15) in the tow point's frame, z = y - S(t) (docs/solver.md (S28)): W k_i = f_z(t + c_i h, z + h sum_{j<i}
+// a_ij k_j) + sum_{j<i} c_ij k_j + gamma h k_t,i df_z/dt, each solved in O(nu) by solve() with the tow point
+// fixed (its increments zero); df_z/dt by central differences in t; y_next = y + h sum m_i k_i + S(t + h) -
+// S(t), error (err) = h sum e_i k_i. Names here: stage_k_[i] is k_i, K_t[i] is k_t,i.
+void ImplicitStepper::stagesTowPoint(const RosenbrockTableau& rw, double t, double h, const std::vector<double>& y,
+                                     const std::vector<double>& f0, const ShipMotion& ship, const Derivative& f,
+                                     std::vector<double>& y_next, std::vector<double>& error)
+{
+  const size_t n = y.size();
+  const ShipEndState at_t = ship(t);
+  stage_k_.resize(rw.stages);
+  stage_y_.resize(n);
+  stage_f_.resize(n);
+  // df_z/dt at (t, z): central differences over 2 delta.
+  const double delta = kTimeDerivativeStep * std::max(1.0, h);
+  relativeDerivative(f, ship, t, at_t, t + delta, y, f_t_);
+  relativeDerivative(f, ship, t, at_t, t - delta, y, stage_f_);
+  for (size_t q = 0; q < n; ++q)
+    f_t_[q] = (f_t_[q] - stage_f_[q]) / (2.0 * delta);
+  double K_t[RosenbrockTableau::kMaxStages];
+  for (int i = 0; i < rw.stages; ++i)
+  {
+    double t_stage = t;  // t + c_i h, c_i = sum_{j<i} a_ij k_t,j
+    K_t[i] = 1.0;        // k_t,i = 1 + sum_{j<i} c_ij k_t,j
+    stage_y_ = y;        // z + h sum_{j<i} a_ij k_j, in y's frame at t
+    for (int j = 0; j < i; ++j)
+    {
+      t_stage += h * rw.a[i][j] * K_t[j];
+      K_t[i] += rw.c[i][j] * K_t[j];
+      if (rw.a[i][j] != 0.0)
+        for (size_t q = 0; q < n; ++q)
+          stage_y_[q] += h * rw.a[i][j] * stage_k_[j][q];
+    }
+    if (i == 0)
+    {
+      stage_f_ = f0;  // f_z(t, z) = f(t, y) - S'(t)
+      ShipEndState rate;
+      rate.p_W = at_t.v_W;
+      rate.v_W = at_t.a_W;
+      shift(stage_f_, rate, ShipEndState(), 1.0);
+    }
+    else
+      relativeDerivative(f, ship, t, at_t, t_stage, stage_y_, stage_f_);
+    for (int j = 0; j < i; ++j)  // + sum_{j<i} c_ij k_j
+      for (size_t q = 0; q < n; ++q)
+        stage_f_[q] += rw.c[i][j] * stage_k_[j][q];
+    for (size_t q = 0; q < n; ++q)  // + gamma h k_t,i df_z/dt
+      stage_f_[q] += gamma_ * h * K_t[i] * f_t_[q];
+    solve(stage_f_, TowPointRates(), stage_k_[i]);  // W k_i = ..., the tow point fixed in this frame
+  }
+  // y_next = y + h sum m_i k_i + S(t + h) - S(t), err = h sum e_i k_i.
+  y_next = y;
+  error.assign(n, 0.0);
+  for (int i = 0; i < rw.stages; ++i)
+    for (size_t q = 0; q < n; ++q)
+    {
+      y_next[q] += h * rw.m[i] * stage_k_[i][q];
+      error[q] += h * rw.e[i] * stage_k_[i][q];
+    }
+  shift(y_next, at_t, ship(t + h), 1.0);
 }
 
 // (S24): ||err|| over the chains, positions relative to the chain's first joint x_1, velocities as they are.

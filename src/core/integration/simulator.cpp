@@ -43,7 +43,7 @@ Simulator::Simulator(std::shared_ptr<const ChainModel> model, ShipMotion ship, c
   wholeCable();
   dt_ = std::min(model_->numerics().max_step, 0.01);
   tableau_ = model_->numerics().implicit_method == ImplicitMethod::kRos2 ? &ros2Tableau() : &ros34pw2Tableau();
-  implicit_.setGamma(tableau_->gamma);
+  implicit_.setMethod(tableau_->gamma, model_->numerics().implicit_frame == ImplicitFrame::kTowPoint);
 }
 
 Simulator::~Simulator() = default;

@@ -49,10 +49,12 @@ class ImplicitStepper
 public:
   static constexpr double kGamma = 1.7071067811865475;  // ROS2's, 1 + 1/sqrt(2): the default
 
-  // The method's gamma of (S15) (rosenbrock_tableau.h); factor() must follow.
-  void setGamma(double gamma)
+  // The method's gamma of (S15) (rosenbrock_tableau.h), and whether its stages are taken in the tow point's
+  // frame (docs/solver.md (S28)) instead of the world's; factor() must follow.
+  void setMethod(double gamma, bool tow_point_frame)
   {
     gamma_ = gamma;
+    tow_point_frame_ = tow_point_frame;
     h_ = 0.0;
   }
   double gamma() const { return gamma_; }
@@ -95,11 +97,12 @@ public:
   void solve(const std::vector<double>& r, const TowPointRates& tow, std::vector<double>& K);
 
   // One step of the method `rw` (S15) from (t, y), f0 = f(t, y), the stage matrix factored for h [s]:
-  // y_next and error, err = h sum e_i k_i (y_next less the embedded solution). The tow point's increments in
-  // stage i are k_t,i (v_1, a_1) of `ship` at t.
+  // y_next and error, err = h sum e_i k_i (y_next less the embedded solution). In the world's frame the tow
+  // point's increments in stage i are k_t,i (v_1, a_1) of `ship` at t; in the tow point's, (S28).
   using Derivative = std::function<void(double t, const std::vector<double>& y, std::vector<double>& dydt)>;
+  using ShipMotion = std::function<ShipEndState(double t)>;
   void stages(const RosenbrockTableau& rw, double t, double h, const std::vector<double>& y,
-              const std::vector<double>& f0, const ShipEndState& ship, const Derivative& f, std::vector<double>& y_next,
+              const std::vector<double>& f0, const ShipMotion& ship, const Derivative& f, std::vector<double>& y_next,
               std::vector<double>& error);
 
   double step() const { return h_; }  // [s] as factored
@@ -116,13 +119,24 @@ private:
     Eigen::Matrix3Xd K_v;  // the stage's k_v at the block's joints (S18)
   };
   void solveBlock(Block& block, const std::vector<double>& r, const TowPointRates& tow, std::vector<double>& K);
+  void stagesWorld(const RosenbrockTableau& rw, double t, double h, const std::vector<double>& y,
+                   const std::vector<double>& f0, const ShipEndState& ship, const Derivative& f,
+                   std::vector<double>& y_next, std::vector<double>& error);
+  void stagesTowPoint(const RosenbrockTableau& rw, double t, double h, const std::vector<double>& y,
+                      const std::vector<double>& f0, const ShipMotion& ship, const Derivative& f,
+                      std::vector<double>& y_next, std::vector<double>& error);
+  void shift(std::vector<double>& y, const ShipEndState& from, const ShipEndState& to, double scale) const;
+  void relativeDerivative(const Derivative& f, const ShipMotion& ship, double t, const ShipEndState& at_t,
+                          double t_prime, const std::vector<double>& y, std::vector<double>& out);
+  static constexpr double kTimeDerivativeStep = 1e-5;  // [s] per second of step (at least 1 s) for df_z/dt
 
   std::vector<Block> blocks_;
   double h_ = 0.0;
   double gamma_ = kGamma;
+  bool tow_point_frame_ = false;
   double winch_d_length_ = 0.0, winch_d_rate_ = 0.0;
   std::vector<std::vector<double>> stage_k_;  // the stages' workspace: k_i of (S15)
-  std::vector<double> stage_y_, stage_f_;
+  std::vector<double> stage_y_, stage_f_, f_t_, shifted_y_;
 };
 
 // (S24): the weighted RMS ||err|| of an implicit step's error, `error` (err) of the step from y to y_next
