@@ -126,19 +126,18 @@ void ScriptedShip::step(double dt, const Teleop* teleop)
     t = targets();
   }
   teleop_ = teleop != nullptr;
-  const double u0 = u_, heading0 = heading_;
+  const double u0 = u_, r0 = r_, heading0 = heading_;
   u_ += std::clamp(t.speed - u_, -kMaxAcceleration * dt, kMaxAcceleration * dt);
   r_ += (t.yaw_rate - r_) * std::min(1.0, dt / kYawLag);
-  heading_ += r_ * dt;
-  // The position is the integral of the velocity over the step (the speed going linearly from u0 to u_,
-  // the heading turning at r_), so that the velocity reported at each sample agrees with the positions:
-  // a mismatch of O(dt a) bends the tow point's interpolated path into accelerations that swing at the
-  // sampling rate, which the simulation would have to follow.
-  const double u_mean = 0.5 * (u0 + u_), turn = r_ * dt;
-  const double along = std::abs(turn) > 1e-6 ? std::sin(0.5 * turn) / (0.5 * turn) : 1.0 - turn * turn / 24.0;
-  const double mid = heading0 + 0.5 * turn;
-  x_ += u_mean * along * std::cos(mid) * dt;
-  y_ += u_mean * along * std::sin(mid) * dt;
+  // Over the step the speed and the yaw rate go linearly from (u0, r0) to (u_, r_), so the heading is the
+  // trapezoid's integral and the position Simpson's integral of the velocity (an error of O(dt^5)): the
+  // velocity reported at each sample then agrees with the positions on both sides of it. A yaw rate held
+  // constant over each step would jump at every sample, and the tow point's interpolated path (whose lever
+  // arm turns with it) would swing at the sampling rate, which the simulation would have to follow.
+  heading_ += 0.5 * (r0 + r_) * dt;
+  const double heading_mid = heading0 + (3.0 * r0 + r_) * dt / 8.0, u_mid = 0.5 * (u0 + u_);
+  x_ += dt / 6.0 * (u0 * std::cos(heading0) + 4.0 * u_mid * std::cos(heading_mid) + u_ * std::cos(heading_));
+  y_ += dt / 6.0 * (u0 * std::sin(heading0) + 4.0 * u_mid * std::sin(heading_mid) + u_ * std::sin(heading_));
   time_ += dt;
 }
 

@@ -10,7 +10,8 @@
 //   zigzag                  full rate to one side, the rudder reversed when the swing, with the lag's
 //                           overshoot, reaches the angle; after the last leg, back to the zigzag's course;
 //   waypoints               toward the bearing of the next point, at most speed / radius.
-// Position and heading are integrated with explicit Euler steps of dt.
+// Over each step of dt the speed and the yaw rate change linearly; the heading and the position are their
+// integrals (trapezoid, Simpson), so the velocities agree with the positions.
 #pragma once
 
 #include <vector>
