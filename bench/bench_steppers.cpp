@@ -9,7 +9,8 @@
 //            docs/solver.md (S27)) beside dopri5 (what the steppers fell back to once parted, before).
 // Steppers: dopri5 (default tolerances), rk4 at its largest stable fixed step (from 2.5 / omega_max, the
 // zig-zag mode omega_max^2 = 12 T / (m_eff d^2) at the tow point's tension, shortened until 60 s of the run
-// go through), implicit (default tolerances); and implicit on an elastic cable (EA 1e8 N, c = 0.01 s EA).
+// go through), implicit (default tolerances), implicit_tow_point (the same, numerics.implicit_frame: tow_point);
+// and implicit on an elastic cable (EA 1e8 N, c = 0.01 s EA).
 // Counter `realtime`: simulated seconds per wall second. Each iteration advances `chunk` simulated
 // seconds; the first 2 s (start-up) are outside the timing.
 #include <benchmark/benchmark.h>
@@ -97,10 +98,11 @@ void timeRun(benchmark::State& state, const SimulationConfig& c, std::shared_ptr
              double startup = 2.0);
 
 void BM_Tow(benchmark::State& state, Path path, bool deep, StepperType stepper, int segments, double chunk,
-            ImplicitMethod method, double axial_stiffness)
+            ImplicitMethod method, double axial_stiffness, ImplicitFrame frame)
 {
   SimulationConfig c = config(segments, deep);
   c.numerics.implicit_method = method;
+  c.numerics.implicit_frame = frame;
   if (axial_stiffness > 0.0)  // the elastic cable, with an axial damping time of 0.01 s
   {
     c.cable.axial_stiffness = axial_stiffness;
@@ -215,12 +217,16 @@ struct Variant
 {
   StepperType stepper;
   ImplicitMethod method;
+  ImplicitFrame frame;
   const char* label;
 };
-const Variant kVariants[] = { { StepperType::kDopri5, ImplicitMethod::kRos34pw2, "dopri5" },
-                              { StepperType::kRk4, ImplicitMethod::kRos34pw2, "rk4" },
-                              { StepperType::kImplicit, ImplicitMethod::kRos34pw2, "implicit" },
-                              { StepperType::kImplicit, ImplicitMethod::kRos2, "implicit_ros2" } };
+const Variant kVariants[] = {
+  { StepperType::kDopri5, ImplicitMethod::kRos34pw2, ImplicitFrame::kWorld, "dopri5" },
+  { StepperType::kRk4, ImplicitMethod::kRos34pw2, ImplicitFrame::kWorld, "rk4" },
+  { StepperType::kImplicit, ImplicitMethod::kRos34pw2, ImplicitFrame::kWorld, "implicit" },
+  { StepperType::kImplicit, ImplicitMethod::kRos34pw2, ImplicitFrame::kTowPoint, "implicit_tow_point" },
+  { StepperType::kImplicit, ImplicitMethod::kRos2, ImplicitFrame::kWorld, "implicit_ros2" }
+};
 
 void registerAll()
 {
@@ -233,7 +239,8 @@ void registerAll()
         const double chunk = slow ? 1.0 : 10.0;
         const std::string label =
             std::string(path == Path::kTurn ? "turn" : "steady") + "/" + v.label + "/nu:" + std::to_string(segments);
-        benchmark::RegisterBenchmark(label.c_str(), BM_Tow, path, false, v.stepper, segments, chunk, v.method, 0.0)
+        benchmark::RegisterBenchmark(label.c_str(), BM_Tow, path, false, v.stepper, segments, chunk, v.method, 0.0,
+                                     v.frame)
             ->Iterations(slow ? 3 : 5)
             ->Unit(benchmark::kMillisecond);
       }
@@ -244,12 +251,12 @@ void registerAll()
                                     "/implicit_elastic_ea1e8/nu:" + std::to_string(segments))
                                        .c_str(),
                                    BM_Tow, path, false, StepperType::kImplicit, segments, 10.0,
-                                   ImplicitMethod::kRos34pw2, 1.0e8)
+                                   ImplicitMethod::kRos34pw2, 1.0e8, ImplicitFrame::kWorld)
           ->Iterations(5)
           ->Unit(benchmark::kMillisecond);
   for (const Variant& v : kVariants)
     benchmark::RegisterBenchmark((std::string("deep6km/") + v.label + "/nu:1000").c_str(), BM_Tow, Path::kStraight,
-                                 true, v.stepper, 1000, 10.0, v.method, 0.0)
+                                 true, v.stepper, 1000, 10.0, v.method, 0.0, v.frame)
         ->Iterations(3)
         ->Unit(benchmark::kMillisecond);
   // The same window for both, 0.10 .. 0.13 s, inside the snap transient; nu = 100 only: at nu = 1000 the first

@@ -233,12 +233,25 @@ void ImplicitStepper::stagesWorld(const RosenbrockTableau& rw, double t, double 
     }
 }
 
-// Adds to the joints of the chains that hang from the tow point the change of the tow point's position and
-// velocity from `from` to `to` (scaled by `scale`): S(to) - S(from), S the tow point's state at every joint.
-void ImplicitStepper::shift(std::vector<double>& y, const ShipEndState& from, const ShipEndState& to,
-                            double scale) const
+namespace
 {
-  const Eigen::Vector3d dp = scale * (to.p_W - from.p_W), dv = scale * (to.v_W - from.v_W);
+// The frame of a step from t (docs/solver.md (S28)): the tow point's state at t continued with its
+// acceleration at t, S(t + tau) = (p + v tau + a tau^2 / 2, v + a tau), and S' = (v + a tau, a).
+ShipEndState frameAt(const ShipEndState& at_t, double tau)
+{
+  ShipEndState s;
+  s.p_W = at_t.p_W + tau * at_t.v_W + 0.5 * tau * tau * at_t.a_W;
+  s.v_W = at_t.v_W + tau * at_t.a_W;
+  s.a_W = at_t.a_W;
+  return s;
+}
+}  // namespace
+
+// Adds to the joints of the chains that hang from the tow point the change of the frame's position and
+// velocity from `from` to `to`: S(to) - S(from), S repeated at every joint.
+void ImplicitStepper::shift(std::vector<double>& y, const ShipEndState& from, const ShipEndState& to) const
+{
+  const Eigen::Vector3d dp = to.p_W - from.p_W, dv = to.v_W - from.v_W;
   for (const Block& block : blocks_)
   {
     if (block.layout.free)
@@ -248,27 +261,37 @@ void ImplicitStepper::shift(std::vector<double>& y, const ShipEndState& from, co
   }
 }
 
-// f_z(t', z) = f(t', z + S(t')) - S'(t') for z = y - S(t): the right-hand side relative to the tow point,
-// evaluated at y + S(t') - S(t) (S' the tow point's velocity and acceleration at every joint).
-void ImplicitStepper::relativeDerivative(const Derivative& f, const ShipMotion& ship, double t,
-                                         const ShipEndState& at_t, double t_prime, const std::vector<double>& y,
-                                         std::vector<double>& out)
+// dydt - S': the frame's velocity and acceleration taken from the joints' rates (f_z from f).
+void ImplicitStepper::subtractFrameRate(std::vector<double>& dydt, const ShipEndState& frame) const
 {
-  const ShipEndState s = ship(t_prime);
-  shifted_y_ = y;
-  shift(shifted_y_, at_t, s, 1.0);
-  out.resize(y.size());
-  f(t_prime, shifted_y_, out);
-  ShipEndState rate;  // S'(t'): (v, a) in the (p, v) slots
-  rate.p_W = s.v_W;
-  rate.v_W = s.a_W;
-  shift(out, rate, ShipEndState(), 1.0);
+  for (const Block& block : blocks_)
+  {
+    if (block.layout.free)
+      continue;
+    block.layout.positions(dydt).colwise() -= frame.v_W;
+    block.layout.velocities(dydt).colwise() -= frame.a_W;
+  }
 }
 
-// (S15) in the tow point's frame, z = y - S(t) (docs/solver.md (S28)): W k_i = f_z(t + c_i h, z + h sum_{j<i}
-// a_ij k_j) + sum_{j<i} c_ij k_j + gamma h k_t,i df_z/dt, each solved in O(nu) by solve() with the tow point
-// fixed (its increments zero); df_z/dt by central differences in t; y_next = y + h sum m_i k_i + S(t + h) -
-// S(t), error (err) = h sum e_i k_i. Names here: stage_k_[i] is k_i, K_t[i] is k_t,i.
+// f_z(t + tau, z) = f(t + tau, z + S(t + tau)) - S'(t + tau) for z = y - S(t), the frame of the step from t:
+// f evaluated at y + S(t + tau) - S(t).
+void ImplicitStepper::relativeDerivative(const Derivative& f, const ShipEndState& at_t, double t, double tau,
+                                         const std::vector<double>& y, std::vector<double>& out)
+{
+  const ShipEndState s = frameAt(at_t, tau);
+  shifted_y_ = y;
+  shift(shifted_y_, at_t, s);
+  out.resize(y.size());
+  f(t + tau, shifted_y_, out);
+  subtractFrameRate(out, s);
+}
+
+// (S15) in the tow point's frame, z = y - S(t), S the tow point's state at the step's start continued with its
+// acceleration then (frameAt; docs/solver.md (S28)): W k_i = f_z(t + c_i h, z + h sum_{j<i} a_ij k_j) +
+// sum_{j<i} c_ij k_j + gamma h k_t,i df_z/dt, each solved in O(nu) by solve() with the tow point's increments
+// zero (its velocity and acceleration relative to S are zero at t); df_z/dt by a forward difference in t;
+// y_next = y + h sum m_i k_i + S(t + h) - S(t), error (err) = h sum e_i k_i. Names here: stage_k_[i] is k_i,
+// K_t[i] is k_t,i.
 void ImplicitStepper::stagesTowPoint(const RosenbrockTableau& rw, double t, double h, const std::vector<double>& y,
                                      const std::vector<double>& f0, const ShipMotion& ship, const Derivative& f,
                                      std::vector<double>& y_next, std::vector<double>& error)
@@ -278,12 +301,14 @@ void ImplicitStepper::stagesTowPoint(const RosenbrockTableau& rw, double t, doub
   stage_k_.resize(rw.stages);
   stage_y_.resize(n);
   stage_f_.resize(n);
-  // df_z/dt at (t, z): central differences over 2 delta.
+  // df_z/dt at (t, z): a forward difference over delta from f_z(t, z) = f(t, y) - S'(t), one more evaluation
+  // of f (its error, delta/2 d2f_z/dt2, is 1e-5 of the step's own O(h) change in f_z).
   const double delta = kTimeDerivativeStep * std::max(1.0, h);
-  relativeDerivative(f, ship, t, at_t, t + delta, y, f_t_);
-  relativeDerivative(f, ship, t, at_t, t - delta, y, stage_f_);
+  relativeDerivative(f, at_t, t, delta, y, f_t_);
+  stage_f_ = f0;
+  subtractFrameRate(stage_f_, at_t);
   for (size_t q = 0; q < n; ++q)
-    f_t_[q] = (f_t_[q] - stage_f_[q]) / (2.0 * delta);
+    f_t_[q] = (f_t_[q] - stage_f_[q]) / delta;
   double K_t[RosenbrockTableau::kMaxStages];
   for (int i = 0; i < rw.stages; ++i)
   {
@@ -301,13 +326,10 @@ void ImplicitStepper::stagesTowPoint(const RosenbrockTableau& rw, double t, doub
     if (i == 0)
     {
       stage_f_ = f0;  // f_z(t, z) = f(t, y) - S'(t)
-      ShipEndState rate;
-      rate.p_W = at_t.v_W;
-      rate.v_W = at_t.a_W;
-      shift(stage_f_, rate, ShipEndState(), 1.0);
+      subtractFrameRate(stage_f_, at_t);
     }
     else
-      relativeDerivative(f, ship, t, at_t, t_stage, stage_y_, stage_f_);
+      relativeDerivative(f, at_t, t, t_stage - t, stage_y_, stage_f_);
     for (int j = 0; j < i; ++j)  // + sum_{j<i} c_ij k_j
       for (size_t q = 0; q < n; ++q)
         stage_f_[q] += rw.c[i][j] * stage_k_[j][q];
@@ -324,7 +346,7 @@ void ImplicitStepper::stagesTowPoint(const RosenbrockTableau& rw, double t, doub
       y_next[q] += h * rw.m[i] * stage_k_[i][q];
       error[q] += h * rw.e[i] * stage_k_[i][q];
     }
-  shift(y_next, at_t, ship(t + h), 1.0);
+  shift(y_next, at_t, frameAt(at_t, h));
 }
 
 // (S24): ||err|| over the chains, positions relative to the chain's first joint x_1, velocities as they are.

@@ -125,9 +125,10 @@ private:
   void stagesTowPoint(const RosenbrockTableau& rw, double t, double h, const std::vector<double>& y,
                       const std::vector<double>& f0, const ShipMotion& ship, const Derivative& f,
                       std::vector<double>& y_next, std::vector<double>& error);
-  void shift(std::vector<double>& y, const ShipEndState& from, const ShipEndState& to, double scale) const;
-  void relativeDerivative(const Derivative& f, const ShipMotion& ship, double t, const ShipEndState& at_t,
-                          double t_prime, const std::vector<double>& y, std::vector<double>& out);
+  void shift(std::vector<double>& y, const ShipEndState& from, const ShipEndState& to) const;
+  void subtractFrameRate(std::vector<double>& dydt, const ShipEndState& frame) const;
+  void relativeDerivative(const Derivative& f, const ShipEndState& at_t, double t, double tau,
+                          const std::vector<double>& y, std::vector<double>& out);
   static constexpr double kTimeDerivativeStep = 1e-5;  // [s] per second of step (at least 1 s) for df_z/dt
 
   std::vector<Block> blocks_;
