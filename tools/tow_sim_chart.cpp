@@ -68,7 +68,8 @@ Output: DIR/chart.csv (speed, cable_out, current, depth, layback, tension_ship, 
 ship_angle, max_tension, converged [m/s, m, m/s, m, m, N, N, deg, N, 0/1]) and, with
 python3-matplotlib, its PNG charts in DIR (tow_sim_plot); see
 docs/tools.md#towing-charts-tow_sim_chart. The planning forms print their answer on stdout and write
-no file.
+no file; they refuse the chart's --speeds, --out and --no-plot, and each option that takes one
+number refuses a range.
 Exit codes: 0 done (chart points without an equilibrium are blank in the CSV and said on stderr, not
 an error); 2 bad arguments or configuration; 3 the depth or band is out of reach; 4 cannot write
 DIR.
@@ -114,10 +115,27 @@ std::string parseArguments(int argc, char** argv, Options& o)
   }
   if (o.config_path.empty())
     return "--config is needed";
+  // Each form takes its own options: one the form would ignore is refused, not dropped.
+  const bool planning = !o.target_depth.empty() || !o.depth_band.empty();
+  if (planning && (!o.speeds.empty() || !o.out_dir.empty() || !o.plot))
+    return "--speeds, --out and --no-plot belong to the chart; --target-depth and --depth-band print their "
+           "answer and write no file";
+  if (!o.target_depth.empty() && !o.depth_band.empty())
+    return "give --target-depth (the cable out for a depth) or --depth-band (the speeds for a band), not both";
   if (!o.target_depth.empty())
+  {
+    if (!o.cable_out.empty())
+      return "--target-depth finds the cable out: leave out --cable-out";
     return o.speed.empty() ? "--target-depth needs --speed" : "";
+  }
   if (!o.depth_band.empty())
+  {
+    if (!o.speed.empty())
+      return "--depth-band finds the speeds: leave out --speed";
     return o.cable_out.empty() ? "--depth-band needs --cable-out (one length)" : "";
+  }
+  if (!o.speed.empty())
+    return "--speed belongs to --target-depth; a chart takes --speeds FROM:TO:STEP";
   if (o.speeds.empty() || o.cable_out.empty() || o.out_dir.empty())
     return "a chart needs --speeds, --cable-out and --out";
   return "";
@@ -131,8 +149,8 @@ Eigen::Vector3d currentFrom(const std::string& text)
   const size_t colon = text.find(':');
   if (colon == std::string::npos)
     throw std::invalid_argument("--current '" + text + "' must be SPEED:DIRECTION_DEG");
-  const double speed = parseRange(text.substr(0, colon), "--current speed").at(0);
-  const double direction = parseRange(text.substr(colon + 1), "--current direction").at(0) * tow_sim::kPi / 180.0;
+  const double speed = parseSingle(text.substr(0, colon), "--current speed");
+  const double direction = parseSingle(text.substr(colon + 1), "--current direction") * tow_sim::kPi / 180.0;
   if (!(std::abs(speed) <= 20.0))
     throw std::invalid_argument("--current: " + std::to_string(speed) + " m/s is outside [-20, 20]");
   return speed * Eigen::Vector3d(std::cos(direction), std::sin(direction), 0.0);
@@ -168,18 +186,10 @@ void plotChart(const std::string& out_dir)
   if (std::system(command.c_str()) != 0)
     std::fprintf(stderr, "tow_sim_chart: the charts were not drawn (is python3-matplotlib installed?)\n");
 }
-double single(const std::string& text, const std::string& option)
-{
-  const std::vector<double> v = parseRange(text, option);
-  if (v.size() != 1)
-    throw std::invalid_argument(option + " '" + text + "' must be one number");
-  return v[0];
-}
-
 // --target-depth D --speed U: the cable out, within the winch's limits.
 int planDepth(const SimulationConfig& config, const Options& o, const Eigen::Vector3d& current)
 {
-  const double depth = single(o.target_depth, "--target-depth"), speed = single(o.speed, "--speed");
+  const double depth = parseSingle(o.target_depth, "--target-depth"), speed = parseSingle(o.speed, "--speed");
   const CableOutPlan plan =
       planCableOut(config, depth, speed, current, config.winch.min_length, config.winch.max_length);
   if (!plan.reachable)
@@ -198,12 +208,12 @@ int planDepth(const SimulationConfig& config, const Options& o, const Eigen::Vec
 // --cable-out L --depth-band MIN:MAX: the speed window.
 int planSpeeds(const SimulationConfig& config, const Options& o, const Eigen::Vector3d& current)
 {
-  const double cable_out = single(o.cable_out, "--cable-out");
+  const double cable_out = parseSingle(o.cable_out, "--cable-out");
   const size_t colon = o.depth_band.find(':');
   if (colon == std::string::npos)
     throw std::invalid_argument("--depth-band '" + o.depth_band + "' must be MIN:MAX [m]");
-  const double lo = single(o.depth_band.substr(0, colon), "--depth-band"),
-               hi = single(o.depth_band.substr(colon + 1), "--depth-band");
+  const double lo = parseSingle(o.depth_band.substr(0, colon), "--depth-band"),
+               hi = parseSingle(o.depth_band.substr(colon + 1), "--depth-band");
   if (!(lo < hi))
     throw std::invalid_argument("--depth-band '" + o.depth_band + "': MIN must be below MAX");
   const SpeedWindow w = speedWindow(config, cable_out, lo, hi, current);

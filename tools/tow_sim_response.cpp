@@ -82,7 +82,7 @@ Eigen::Vector3d towPoint(const std::string& text)
   std::vector<double> v;
   std::istringstream in(text);
   for (std::string item; std::getline(in, item, ',');)
-    v.push_back(parseRange(item, "--tow-point").at(0));
+    v.push_back(parseSingle(item, "--tow-point"));
   if (v.size() != 3)
     throw std::invalid_argument("--tow-point " + text + ": X,Y,Z [m] in the ship frame");
   return Eigen::Vector3d(v[0], v[1], v[2]);
@@ -154,7 +154,7 @@ int seaState(const std::string& scenario_path, const std::string& cable_out, con
     const Scenario scenario = loadScenarioFile(scenario_path);
     std::optional<double> l;
     if (!cable_out.empty())
-      l = parseRange(cable_out, "--cable-out").at(0);
+      l = parseSingle(cable_out, "--cable-out");
     r = seaStateResponse(scenario, l);
   }
   catch (const std::invalid_argument& e)
@@ -205,8 +205,8 @@ int main(int argc, char** argv)
   try
   {
     const SimulationConfig config = loadConfigFile(config_path);
-    const double u = parseRange(speed, "--speed").at(0);
-    const double l = cable_out.empty() ? config.cable.length : parseRange(cable_out, "--cable-out").at(0);
+    const double u = parseSingle(speed, "--speed");
+    const double l = cable_out.empty() ? config.cable.length : parseSingle(cable_out, "--cable-out");
     const Eigen::Vector3d motion = towPointMotion(input, towPoint(tow_point.empty() ? "-20,0,0" : tow_point));
     rows = steadyTowResponse(config, u, l, Eigen::Vector3d::Zero(), motion, parseRange(periods, "--periods"));
   }

@@ -289,6 +289,13 @@ std::vector<double> parseRange(const std::string& text, const std::string& optio
   return out;
 }
 
+double parseSingle(const std::string& text, const std::string& option)
+{
+  if (text.find(':') != std::string::npos)
+    throw std::invalid_argument(option + " '" + text + "' must be one number, not a range");
+  return parseRange(text, option).front();
+}
+
 const char* chartHeader()
 {
   return "speed,cable_out,current,depth,layback,tension_ship,tension_vehicle,ship_angle,max_tension,converged";

@@ -189,4 +189,33 @@ TEST(ToolHelp, TheDemoRefusesADurationWithTrailingCharacters)
   EXPECT_EQ(run("tow_sim_demo", "600 700").status, 2);
 }
 
+// An option the chosen form would ignore is refused, and an option that takes one number refuses a range: the
+// planning forms of tow_sim_chart used to drop --out and --speeds, tow_sim_response to run the first of
+// --speed 1:3:1's speeds only.
+TEST(ToolHelp, AnOptionTheFormWouldIgnoreOrARangeForOneNumberIsRefused)
+{
+  const std::string config = " --config " + std::string(TOW_SIM_SOURCE_DIR) + "/config/tow_sim.yaml";
+  const std::pair<std::string, std::string> cases[] = {
+    { "tow_sim_chart" + config + " --target-depth 150 --speed 2 --out /tmp/x", "write no file" },
+    { "tow_sim_chart" + config + " --target-depth 150 --speed 2 --speeds 1:2:1", "write no file" },
+    { "tow_sim_chart" + config + " --cable-out 500 --depth-band 100:200 --no-plot", "write no file" },
+    { "tow_sim_chart" + config + " --cable-out 500 --depth-band 100:200 --speed 2", "leave out --speed" },
+    { "tow_sim_chart" + config + " --target-depth 150 --speed 2 --cable-out 500", "leave out --cable-out" },
+    { "tow_sim_chart" + config + " --target-depth 150 --speed 2 --depth-band 100:200 --cable-out 5", "not both" },
+    { "tow_sim_chart" + config + " --speeds 1:2:1 --cable-out 500 --out /tmp/x --speed 2", "--speeds FROM:TO:STEP" },
+    { "tow_sim_chart" + config + " --target-depth 150 --speed 1:3:1", "--speed '1:3:1' must be one number" },
+    { "tow_sim_response" + config + " --speed 1:3:1 --input heave --periods 5 --out /tmp/x",
+      "--speed '1:3:1' must be one number" },
+    { "tow_sim_response" + config + " --speed 2 --cable-out 300:500:100 --input heave --periods 5 --out /tmp/x",
+      "--cable-out '300:500:100' must be one number" },
+  };
+  for (const auto& [command, why] : cases)
+  {
+    const size_t space = command.find(' ');
+    const Outcome o = run(command.substr(0, space), command.substr(space + 1));
+    EXPECT_EQ(o.status, 2) << command;
+    EXPECT_NE(o.err.find(why), std::string::npos) << command << ": " << o.err;
+  }
+}
+
 }  // namespace

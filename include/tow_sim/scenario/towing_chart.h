@@ -106,6 +106,8 @@ SpeedWindow speedWindow(const SimulationConfig& config, double cable_out, double
 // FROM:TO:STEP [the unit's] as a list (TO included within STEP/1000); throws std::invalid_argument naming
 // `option` for a malformed range, STEP <= 0, FROM > TO or more than 10000 values.
 std::vector<double> parseRange(const std::string& text, const std::string& option);
+// One number: parseRange's errors, and a range (FROM:TO:STEP) refused, naming `option`.
+double parseSingle(const std::string& text, const std::string& option);
 
 const char* chartHeader();
 void writeChartRow(std::ostream& out, const ChartPoint& p);
