@@ -1,11 +1,25 @@
 #!/usr/bin/env bash
-# The install space alone: with only INSTALL/setup.bash sourced in an empty environment (no devel space,
+# usage: scripts/check_install.sh INSTALL_DIR
+#
+# The install space alone: with only INSTALL_DIR/setup.bash sourced in an empty environment (no devel space,
 # no source tree on the package path), the batch runner, tow_sim_fatigue, tow_sim_plot, tow_sim_chart
 # (drawing its charts with the installed tow_sim_plot), tow_sim_sweep, the Python module and the demo
-# (headless, on a master of its own) run.
-# Usage: scripts/check_install.sh INSTALL_DIR      (make test: after catkin_make install)
+# (headless, on a master of its own, on a free port) run, in a temporary folder removed at the end.
+#
+#   INSTALL_DIR  the install space of `catkin_make install` (make test: WS/install)
+#   -h, --help   prints this help and exits
+#
+# Exit status: 2 for wrong arguments (nothing runs); 0 when every check passed, else not 0.
 set -euo pipefail
-install="$(realpath "${1:?usage: check_install.sh INSTALL_DIR}")"
+usage() { sed -n -e '1d' -e '/^#/!q' -e 's/^# \{0,1\}//p' "${BASH_SOURCE[0]}"; }  # the header above
+for arg in "$@"; do
+  case "$arg" in -h | --help) usage; exit 0 ;; esac
+done
+for arg in "$@"; do
+  case "$arg" in -?*) echo "check_install.sh: unknown option '$arg'; see --help" >&2; exit 2 ;; esac
+done
+[[ -n "${1:-}" ]] || { echo "check_install.sh: INSTALL_DIR missing; see --help" >&2; exit 2; }
+install="$(realpath "$1")"
 [[ -f "$install/setup.bash" ]] || { echo "no $install/setup.bash: run catkin_make install" >&2; exit 1; }
 work="$(mktemp -d /tmp/tow_sim_install_check.XXXXXX)"
 trap 'rm -rf "$work"' EXIT

@@ -1,6 +1,21 @@
 #!/usr/bin/env bash
-# Installs the Debian packages in scripts/deps.txt that are missing; does nothing when all are there.
+# usage: scripts/install_deps.sh
+#
+# Installs the Debian packages listed in scripts/deps.txt that are missing (apt-get update, then apt-get
+# install --no-install-recommends, with sudo unless run as root); does nothing when all are there.
+# Takes no arguments (make deps runs it).
+#
+#   -h, --help  prints this help and exits
+#
+# Exit status: 2 for wrong arguments (nothing runs); 0 when every package is installed, else not 0.
 set -euo pipefail
+usage() { sed -n -e '1d' -e '/^#/!q' -e 's/^# \{0,1\}//p' "${BASH_SOURCE[0]}"; }  # the header above
+for arg in "$@"; do
+  case "$arg" in -h | --help) usage; exit 0 ;; esac
+done
+for arg in "$@"; do
+  case "$arg" in -?*) echo "install_deps.sh: unknown option '$arg'; see --help" >&2; exit 2 ;; esac
+done
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 mapfile -t wanted < <(grep -v '^\s*#' "$here/deps.txt" | grep -v '^\s*$')
 missing=()

@@ -1,11 +1,33 @@
 #!/usr/bin/env bash
-# Runs the demo headless with record:=true for SECONDS of wall time, stops it (rosbag closes the bag),
-# and prints `rosbag info` of the bag written.
-# Usage: scripts/record_demo.sh OUT_DIR [SECONDS (default 20)] [manoeuvre (default straight)]
-# Needs a built workspace (make build).
+# usage: scripts/record_demo.sh OUT_DIR [SECONDS] [MANOEUVRE]
+#
+# Runs the demo headless (tow_sim.launch rviz:=false record:=true) for SECONDS of wall time, stops it
+# (rosbag closes the bag), and prints `rosbag info` of the bag written.
+#
+#   OUT_DIR     where the bag (OUT_DIR/tow_sim_DATE-TIME.bag) and launch.log go; made if missing, and
+#               tow_sim_*.bag files already in it are removed first
+#   SECONDS     wall time to run, a number > 0 (default 20)
+#   MANOEUVRE   the scripted ship's manoeuvre: straight, turn, zigzag, speed_change or waypoints
+#               (default straight)
+#   -h, --help  prints this help and exits
+#
+# Needs a built workspace (make build): WS (default ../tow_sim_ws beside the repository)/devel/setup.bash.
+# Exit status: 2 for wrong arguments (nothing runs); 0 when a bag was written, 1 when none was.
 set -euo pipefail
-out="$(realpath -m "${1:?usage: record_demo.sh OUT_DIR [seconds] [manoeuvre]}")"
+usage() { sed -n -e '1d' -e '/^#/!q' -e 's/^# \{0,1\}//p' "${BASH_SOURCE[0]}"; }  # the header above
+for arg in "$@"; do
+  case "$arg" in -h | --help) usage; exit 0 ;; esac
+done
+for arg in "${@:1:1}" "${@:3}"; do  # SECONDS ($2) is checked as a number below
+  case "$arg" in -?*) echo "record_demo.sh: unknown option '$arg'; see --help" >&2; exit 2 ;; esac
+done
+[[ -n "${1:-}" ]] || { echo "record_demo.sh: OUT_DIR missing; see --help" >&2; exit 2; }
 seconds="${2:-20}"
+if ! [[ "$seconds" =~ ^[0-9]*\.?[0-9]+$ && "$seconds" =~ [1-9] ]]; then
+  echo "record_demo.sh: SECONDS must be a number of seconds > 0, not '$seconds'; see --help" >&2
+  exit 2
+fi
+out="$(realpath -m "$1")"
 manoeuvre="${3:-straight}"
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 ws="${WS:-$(realpath -m "$repo/../tow_sim_ws")}"

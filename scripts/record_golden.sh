@@ -1,9 +1,24 @@
 #!/usr/bin/env bash
-# Records the golden outputs of every shipped scenario (timeseries.csv and shapes.csv) into test/golden/,
-# which Batch.ShippedScenariosReproduceTheGoldenOutputs compares each run against (1e-9 of each column's
-# scale). Run it only when a change is meant to move the results, and say in the commit which and why.
-# Usage: scripts/record_golden.sh [path/to/tow_sim_batch]   (default: the workspace beside the repository)
+# usage: scripts/record_golden.sh [TOW_SIM_BATCH]
+#
+# Records the golden outputs of every shipped scenario (scenarios/*.yaml but the bathymetry_* grids:
+# timeseries.csv and shapes.csv) into test/golden/, which Batch.ShippedScenariosReproduceTheGoldenOutputs
+# compares each run against (1e-9 of each column's scale). Run it only when a change is meant to move the
+# results, and say in the commit which and why.
+#
+#   TOW_SIM_BATCH  the tow_sim_batch binary to run (default: the workspace beside the repository,
+#                  ../tow_sim_ws/devel/lib/tow_sim/tow_sim_batch)
+#   -h, --help     prints this help and exits
+#
+# Exit status: 2 for wrong arguments (nothing runs); 1 when a scenario's run fails (its log is printed).
 set -euo pipefail
+usage() { sed -n -e '1d' -e '/^#/!q' -e 's/^# \{0,1\}//p' "${BASH_SOURCE[0]}"; }  # the header above
+for arg in "$@"; do
+  case "$arg" in -h | --help) usage; exit 0 ;; esac
+done
+for arg in "$@"; do
+  case "$arg" in -?*) echo "record_golden.sh: unknown option '$arg'; see --help" >&2; exit 2 ;; esac
+done
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 batch="${1:-$repo/../tow_sim_ws/devel/lib/tow_sim/tow_sim_batch}"
 tmp="$(mktemp -d)"

@@ -1,10 +1,29 @@
 #!/usr/bin/env bash
-# `make test`: every stage runs even when an earlier one failed (the size, layer, package and format checks, the test
-# build, run_tests, the install space, the sanitizers, fuzzing), its exit status is recorded, and
-# scripts/test_summary.py gives the verdict over all of them (the expected results of every suite
-# included, so a test that never ran is a failure). Called by the Makefile with WS, REPO, JOBS,
-# CATKIN_ARGS and FUZZ_SECONDS in the environment.
+# usage: WS=DIR REPO=DIR JOBS=N CATKIN_ARGS=ARGS FUZZ_SECONDS=N scripts/run_all_tests.sh
+#
+# `make test`: every stage runs even when an earlier one failed (the size, layer, package and format checks,
+# the test build, run_tests, the install space, the sanitizers, fuzzing), its exit status is recorded in
+# WS/test_stages.txt, and scripts/test_summary.py gives the verdict over all of them (the expected results
+# of every suite included, so a test that never ran is a failure). Takes no arguments; the Makefile (make
+# test) calls it with these in the environment, all required:
+#
+#   WS            the catkin workspace
+#   REPO          the repository
+#   JOBS          parallel build jobs (make test: 2)
+#   CATKIN_ARGS   catkin_make's arguments (make test: -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=...)
+#   FUZZ_SECONDS  seconds of fuzzing per target; 0 skips the fuzz stage (make test: 30)
+#   -h, --help    prints this help and exits
+#
+# Exit status: 2 for wrong arguments (nothing runs), not 0 when a variable is missing; else test_summary.py's
+# (0 when everything passed).
 set -o pipefail
+usage() { sed -n -e '1d' -e '/^#/!q' -e 's/^# \{0,1\}//p' "${BASH_SOURCE[0]}"; }  # the header above
+for arg in "$@"; do
+  case "$arg" in -h | --help) usage; exit 0 ;; esac
+done
+for arg in "$@"; do
+  case "$arg" in -?*) echo "run_all_tests.sh: unknown option '$arg'; see --help" >&2; exit 2 ;; esac
+done
 : "${WS:?}" "${REPO:?}" "${JOBS:?}" "${CATKIN_ARGS:?}" "${FUZZ_SECONDS:?}"
 stages="$WS/test_stages.txt"
 : > "$stages"

@@ -1,14 +1,38 @@
 #!/usr/bin/env bash
-# Takes a screenshot of rviz showing the running demo, under a virtual X display (Xvfb).
-# Usage: scripts/rviz_screenshot.sh OUT.png [SECONDS_TO_RUN (default 40)] [manoeuvre (default turn)] [config.yaml]
-# SECONDS_TO_RUN `markers`: as soon as the cable is laid out and rviz listens to cable/markers (at most
-# 120 s), plus 3 s to draw them.
+# usage: scripts/rviz_screenshot.sh OUT.png [SECONDS] [MANOEUVRE] [CONFIG.yaml]
+#
+# Takes a screenshot of rviz showing the running demo (tow_sim.launch rviz:=true), under a virtual X
+# display (Xvfb), and prints the file(s) written.
+#
+#   OUT.png      the screenshot to write
+#   SECONDS      wall time the demo runs before the screenshot, a number > 0 (default 40), or `markers`:
+#                as soon as the cable is laid out and rviz listens to cable/markers (at most 150 s),
+#                plus 3 s to draw them
+#   MANOEUVRE    the scripted ship's manoeuvre: straight, turn, zigzag, speed_change or waypoints
+#                (default turn)
+#   CONFIG.yaml  the configuration tow_sim.launch loads (default: its own, config/tow_sim.yaml)
+#   -h, --help   prints this help and exits
+#
 # SHOTS=N (default 1): N screenshots 2 s apart, OUT-1.png .. OUT-N.png, the last also as OUT.png (software
 # GL on a loaded machine can take a while to draw the first frame with the cable in it).
-# Needs a built workspace (make build); uses Xvfb and ImageMagick's import.
+# Needs a built workspace (make build): WS (default ../tow_sim_ws beside the repository)/devel/setup.bash;
+# uses Xvfb and ImageMagick's import. The launch's log: /tmp/tow_sim_screenshot_launch.log.
+# Exit status: 2 for wrong arguments (nothing runs); 0 when the screenshot was written.
 set -euo pipefail
-out="$(realpath -m "${1:?usage: rviz_screenshot.sh OUT.png [seconds] [manoeuvre]}")"
+usage() { sed -n -e '1d' -e '/^#/!q' -e 's/^# \{0,1\}//p' "${BASH_SOURCE[0]}"; }  # the header above
+for arg in "$@"; do
+  case "$arg" in -h | --help) usage; exit 0 ;; esac
+done
+for arg in "${@:1:1}" "${@:3}"; do  # SECONDS ($2) is checked below
+  case "$arg" in -?*) echo "rviz_screenshot.sh: unknown option '$arg'; see --help" >&2; exit 2 ;; esac
+done
+[[ -n "${1:-}" ]] || { echo "rviz_screenshot.sh: OUT.png missing; see --help" >&2; exit 2; }
 seconds="${2:-40}"
+if ! [[ "$seconds" == markers || ("$seconds" =~ ^[0-9]*\.?[0-9]+$ && "$seconds" =~ [1-9]) ]]; then
+  echo "rviz_screenshot.sh: SECONDS must be a number of seconds > 0 or 'markers', not '$seconds'; see --help" >&2
+  exit 2
+fi
+out="$(realpath -m "$1")"
 manoeuvre="${3:-turn}"
 config="${4:-}"
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
