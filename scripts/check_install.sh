@@ -11,14 +11,10 @@
 #
 # Exit status: 2 for wrong arguments (nothing runs); 0 when every check passed, else not 0.
 set -euo pipefail
-usage() { sed -n -e '1d' -e '/^#/!q' -e 's/^# \{0,1\}//p' "${BASH_SOURCE[0]}"; }  # the header above
-for arg in "$@"; do
-  case "$arg" in -h | --help) usage; exit 0 ;; esac
-done
-for arg in "$@"; do
-  case "$arg" in -?*) echo "check_install.sh: unknown option '$arg'; see --help" >&2; exit 2 ;; esac
-done
-[[ -n "${1:-}" ]] || { echo "check_install.sh: INSTALL_DIR missing; see --help" >&2; exit 2; }
+source "$(dirname "${BASH_SOURCE[0]}")/cli.sh"
+cli_help "$@"
+cli_refuse_options "$@"
+[[ -n "${1:-}" ]] || cli_fail "INSTALL_DIR missing"
 install="$(realpath "$1")"
 [[ -f "$install/setup.bash" ]] || { echo "no $install/setup.bash: run catkin_make install" >&2; exit 1; }
 work="$(mktemp -d /tmp/tow_sim_install_check.XXXXXX)"

@@ -9,13 +9,9 @@
 #
 # Exit status: 2 for wrong arguments (nothing runs); 0 when every package is installed, else not 0.
 set -euo pipefail
-usage() { sed -n -e '1d' -e '/^#/!q' -e 's/^# \{0,1\}//p' "${BASH_SOURCE[0]}"; }  # the header above
-for arg in "$@"; do
-  case "$arg" in -h | --help) usage; exit 0 ;; esac
-done
-for arg in "$@"; do
-  case "$arg" in -?*) echo "install_deps.sh: unknown option '$arg'; see --help" >&2; exit 2 ;; esac
-done
+source "$(dirname "${BASH_SOURCE[0]}")/cli.sh"
+cli_help "$@"
+cli_refuse_options "$@"
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 mapfile -t wanted < <(grep -v '^\s*#' "$here/deps.txt" | grep -v '^\s*$')
 missing=()

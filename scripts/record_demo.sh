@@ -14,19 +14,12 @@
 # Needs a built workspace (make build): WS (default ../tow_sim_ws beside the repository)/devel/setup.bash.
 # Exit status: 2 for wrong arguments (nothing runs); 0 when a bag was written, 1 when none was.
 set -euo pipefail
-usage() { sed -n -e '1d' -e '/^#/!q' -e 's/^# \{0,1\}//p' "${BASH_SOURCE[0]}"; }  # the header above
-for arg in "$@"; do
-  case "$arg" in -h | --help) usage; exit 0 ;; esac
-done
-for arg in "${@:1:1}" "${@:3}"; do  # SECONDS ($2) is checked as a number below
-  case "$arg" in -?*) echo "record_demo.sh: unknown option '$arg'; see --help" >&2; exit 2 ;; esac
-done
-[[ -n "${1:-}" ]] || { echo "record_demo.sh: OUT_DIR missing; see --help" >&2; exit 2; }
+source "$(dirname "${BASH_SOURCE[0]}")/cli.sh"
+cli_help "$@"
+cli_refuse_options "${@:1:1}" "${@:3}"  # SECONDS ($2) is checked as a number below
+[[ -n "${1:-}" ]] || cli_fail "OUT_DIR missing"
 seconds="${2:-20}"
-if ! [[ "$seconds" =~ ^[0-9]*\.?[0-9]+$ && "$seconds" =~ [1-9] ]]; then
-  echo "record_demo.sh: SECONDS must be a number of seconds > 0, not '$seconds'; see --help" >&2
-  exit 2
-fi
+cli_is_positive "$seconds" || cli_fail "SECONDS must be a number of seconds > 0, not '$seconds'"
 out="$(realpath -m "$1")"
 manoeuvre="${3:-straight}"
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"

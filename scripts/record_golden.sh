@@ -12,13 +12,9 @@
 #
 # Exit status: 2 for wrong arguments (nothing runs); 1 when a scenario's run fails (its log is printed).
 set -euo pipefail
-usage() { sed -n -e '1d' -e '/^#/!q' -e 's/^# \{0,1\}//p' "${BASH_SOURCE[0]}"; }  # the header above
-for arg in "$@"; do
-  case "$arg" in -h | --help) usage; exit 0 ;; esac
-done
-for arg in "$@"; do
-  case "$arg" in -?*) echo "record_golden.sh: unknown option '$arg'; see --help" >&2; exit 2 ;; esac
-done
+source "$(dirname "${BASH_SOURCE[0]}")/cli.sh"
+cli_help "$@"
+cli_refuse_options "$@"
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 batch="${1:-$repo/../tow_sim_ws/devel/lib/tow_sim/tow_sim_batch}"
 tmp="$(mktemp -d)"

@@ -17,13 +17,9 @@
 # Exit status: 2 for wrong arguments (nothing runs), not 0 when a variable is missing; else test_summary.py's
 # (0 when everything passed).
 set -o pipefail
-usage() { sed -n -e '1d' -e '/^#/!q' -e 's/^# \{0,1\}//p' "${BASH_SOURCE[0]}"; }  # the header above
-for arg in "$@"; do
-  case "$arg" in -h | --help) usage; exit 0 ;; esac
-done
-for arg in "$@"; do
-  case "$arg" in -?*) echo "run_all_tests.sh: unknown option '$arg'; see --help" >&2; exit 2 ;; esac
-done
+source "$(dirname "${BASH_SOURCE[0]}")/cli.sh"
+cli_help "$@"
+cli_refuse_options "$@"
 : "${WS:?}" "${REPO:?}" "${JOBS:?}" "${CATKIN_ARGS:?}" "${FUZZ_SECONDS:?}"
 stages="$WS/test_stages.txt"
 : > "$stages"

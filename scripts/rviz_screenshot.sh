@@ -19,19 +19,13 @@
 # uses Xvfb and ImageMagick's import. The launch's log: /tmp/tow_sim_screenshot_launch.log.
 # Exit status: 2 for wrong arguments (nothing runs); 0 when the screenshot was written.
 set -euo pipefail
-usage() { sed -n -e '1d' -e '/^#/!q' -e 's/^# \{0,1\}//p' "${BASH_SOURCE[0]}"; }  # the header above
-for arg in "$@"; do
-  case "$arg" in -h | --help) usage; exit 0 ;; esac
-done
-for arg in "${@:1:1}" "${@:3}"; do  # SECONDS ($2) is checked below
-  case "$arg" in -?*) echo "rviz_screenshot.sh: unknown option '$arg'; see --help" >&2; exit 2 ;; esac
-done
-[[ -n "${1:-}" ]] || { echo "rviz_screenshot.sh: OUT.png missing; see --help" >&2; exit 2; }
+source "$(dirname "${BASH_SOURCE[0]}")/cli.sh"
+cli_help "$@"
+cli_refuse_options "${@:1:1}" "${@:3}"  # SECONDS ($2) is checked below
+[[ -n "${1:-}" ]] || cli_fail "OUT.png missing"
 seconds="${2:-40}"
-if ! [[ "$seconds" == markers || ("$seconds" =~ ^[0-9]*\.?[0-9]+$ && "$seconds" =~ [1-9]) ]]; then
-  echo "rviz_screenshot.sh: SECONDS must be a number of seconds > 0 or 'markers', not '$seconds'; see --help" >&2
-  exit 2
-fi
+[[ "$seconds" == markers ]] || cli_is_positive "$seconds" ||
+  cli_fail "SECONDS must be a number of seconds > 0 or 'markers', not '$seconds'"
 out="$(realpath -m "$1")"
 manoeuvre="${3:-turn}"
 config="${4:-}"
