@@ -176,6 +176,52 @@ void ImplicitStepper::solveBlock(Block& block, const std::vector<double>& r, con
   L.cableOut(K) = r_L + gh * L.payoutRate(K);
 }
 
+namespace
+{
+using Stages = std::vector<std::vector<double>>;
+
+// (S15)'s stage point: k_t,i = 1 + sum_{j<i} c_ij k_t,j into K_t[i], stage_y = y + h sum_{j<i} a_ij k_j;
+// returns t + c_i h, c_i = sum_{j<i} a_ij k_t,j.
+double stagePoint(const RosenbrockTableau& rw, int i, double t, double h, const std::vector<double>& y, const Stages& k,
+                  double* K_t, std::vector<double>& stage_y)
+{
+  double t_stage = t;
+  K_t[i] = 1.0;
+  stage_y = y;
+  for (int j = 0; j < i; ++j)
+  {
+    t_stage += h * rw.a[i][j] * K_t[j];
+    K_t[i] += rw.c[i][j] * K_t[j];
+    if (rw.a[i][j] != 0.0)
+      for (size_t q = 0; q < y.size(); ++q)
+        stage_y[q] += h * rw.a[i][j] * k[j][q];
+  }
+  return t_stage;
+}
+
+// + sum_{j<i} c_ij k_j on the stage's right-hand side.
+void addStageHistory(const RosenbrockTableau& rw, int i, const Stages& k, std::vector<double>& stage_f)
+{
+  for (int j = 0; j < i; ++j)
+    for (size_t q = 0; q < stage_f.size(); ++q)
+      stage_f[q] += rw.c[i][j] * k[j][q];
+}
+
+// y_next = y + h sum m_i k_i, err = h sum e_i k_i.
+void combineStages(const RosenbrockTableau& rw, double h, const std::vector<double>& y, const Stages& k,
+                   std::vector<double>& y_next, std::vector<double>& error)
+{
+  y_next = y;
+  error.assign(y.size(), 0.0);
+  for (int i = 0; i < rw.stages; ++i)
+    for (size_t q = 0; q < y.size(); ++q)
+    {
+      y_next[q] += h * rw.m[i] * k[i][q];
+      error[q] += h * rw.e[i] * k[i][q];
+    }
+}
+}  // namespace
+
 void ImplicitStepper::stages(const RosenbrockTableau& rw, double t, double h, const std::vector<double>& y,
                              const std::vector<double>& f0, const ShipMotion& ship, const Derivative& f,
                              std::vector<double>& y_next, std::vector<double>& error)
@@ -193,44 +239,20 @@ void ImplicitStepper::stagesWorld(const RosenbrockTableau& rw, double t, double 
                                   const std::vector<double>& f0, const ShipEndState& ship, const Derivative& f,
                                   std::vector<double>& y_next, std::vector<double>& error)
 {
-  const size_t n = y.size();
   stage_k_.resize(rw.stages);
-  stage_y_.resize(n);
-  stage_f_.resize(n);
+  stage_f_.resize(y.size());
   double K_t[RosenbrockTableau::kMaxStages];
   for (int i = 0; i < rw.stages; ++i)
   {
-    double t_stage = t;  // t + c_i h, c_i = sum_{j<i} a_ij k_t,j
-    K_t[i] = 1.0;        // k_t,i = 1 + sum_{j<i} c_ij k_t,j
+    const double t_stage = stagePoint(rw, i, t, h, y, stage_k_, K_t, stage_y_);
     if (i == 0)
       stage_f_ = f0;
     else
-    {
-      stage_y_ = y;  // y + h sum_{j<i} a_ij k_j
-      for (int j = 0; j < i; ++j)
-      {
-        t_stage += h * rw.a[i][j] * K_t[j];
-        K_t[i] += rw.c[i][j] * K_t[j];
-        if (rw.a[i][j] != 0.0)
-          for (size_t q = 0; q < n; ++q)
-            stage_y_[q] += h * rw.a[i][j] * stage_k_[j][q];
-      }
       f(t_stage, stage_y_, stage_f_);
-      for (int j = 0; j < i; ++j)  // + sum_{j<i} c_ij k_j
-        for (size_t q = 0; q < n; ++q)
-          stage_f_[q] += rw.c[i][j] * stage_k_[j][q];
-    }
+    addStageHistory(rw, i, stage_k_, stage_f_);
     solve(stage_f_, TowPointRates{ K_t[i] * ship.v_W, K_t[i] * ship.a_W }, stage_k_[i]);  // W k_i = ...
   }
-  // y_next = y + h sum m_i k_i, err = h sum e_i k_i.
-  y_next = y;
-  error.assign(n, 0.0);
-  for (int i = 0; i < rw.stages; ++i)
-    for (size_t q = 0; q < n; ++q)
-    {
-      y_next[q] += h * rw.m[i] * stage_k_[i][q];
-      error[q] += h * rw.e[i] * stage_k_[i][q];
-    }
+  combineStages(rw, h, y, stage_k_, y_next, error);
 }
 
 namespace
@@ -312,17 +334,7 @@ void ImplicitStepper::stagesTowPoint(const RosenbrockTableau& rw, double t, doub
   double K_t[RosenbrockTableau::kMaxStages];
   for (int i = 0; i < rw.stages; ++i)
   {
-    double t_stage = t;  // t + c_i h, c_i = sum_{j<i} a_ij k_t,j
-    K_t[i] = 1.0;        // k_t,i = 1 + sum_{j<i} c_ij k_t,j
-    stage_y_ = y;        // z + h sum_{j<i} a_ij k_j, in y's frame at t
-    for (int j = 0; j < i; ++j)
-    {
-      t_stage += h * rw.a[i][j] * K_t[j];
-      K_t[i] += rw.c[i][j] * K_t[j];
-      if (rw.a[i][j] != 0.0)
-        for (size_t q = 0; q < n; ++q)
-          stage_y_[q] += h * rw.a[i][j] * stage_k_[j][q];
-    }
+    const double t_stage = stagePoint(rw, i, t, h, y, stage_k_, K_t, stage_y_);  // z + h sum_{j<i} a_ij k_j
     if (i == 0)
     {
       stage_f_ = f0;  // f_z(t, z) = f(t, y) - S'(t)
@@ -330,23 +342,13 @@ void ImplicitStepper::stagesTowPoint(const RosenbrockTableau& rw, double t, doub
     }
     else
       relativeDerivative(f, at_t, t, t_stage - t, stage_y_, stage_f_);
-    for (int j = 0; j < i; ++j)  // + sum_{j<i} c_ij k_j
-      for (size_t q = 0; q < n; ++q)
-        stage_f_[q] += rw.c[i][j] * stage_k_[j][q];
+    addStageHistory(rw, i, stage_k_, stage_f_);
     for (size_t q = 0; q < n; ++q)  // + gamma h k_t,i df_z/dt
       stage_f_[q] += gamma_ * h * K_t[i] * f_t_[q];
     solve(stage_f_, TowPointRates(), stage_k_[i]);  // W k_i = ..., the tow point fixed in this frame
   }
-  // y_next = y + h sum m_i k_i + S(t + h) - S(t), err = h sum e_i k_i.
-  y_next = y;
-  error.assign(n, 0.0);
-  for (int i = 0; i < rw.stages; ++i)
-    for (size_t q = 0; q < n; ++q)
-    {
-      y_next[q] += h * rw.m[i] * stage_k_[i][q];
-      error[q] += h * rw.e[i] * stage_k_[i][q];
-    }
-  shift(y_next, at_t, frameAt(at_t, h));
+  combineStages(rw, h, y, stage_k_, y_next, error);  // y_next = y + h sum m_i k_i, err = h sum e_i k_i,
+  shift(y_next, at_t, frameAt(at_t, h));             // + S(t + h) - S(t)
 }
 
 // (S24): ||err|| over the chains, positions relative to the chain's first joint x_1, velocities as they are.
