@@ -338,6 +338,10 @@ void bindSeaState(py::module_& m)
 PYBIND11_MODULE(_core, m)
 {
   m.doc() = "tow_sim's ROS-free core: configurations, scenarios, runs, steady tows and towing charts.";
+  // pybind11 looks NumPy's C API up once, on the first array made (a function-local static that imports numpy).
+  // Made here, under the import's lock: two threads whose runs made their first arrays at once deadlocked, one
+  // holding the GIL and waiting for the static, the other inside the static waiting for the GIL to import numpy.
+  const pybind11::array_t<double> first_array(0);
   tow_sim::python::bindConfig(m);
   tow_sim::python::bindScenario(m);
   tow_sim::python::bindSnapshot(m);

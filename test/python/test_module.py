@@ -173,7 +173,7 @@ def test_a_ship_given_sample_by_sample_tows_as_the_scripted_one():
 
 def test_runs_in_threads_give_the_sequential_results_and_release_the_gil():
     sc = tow_sim.load_scenario(os.path.join(SOURCE, "scenarios", "zigzag.yaml"))
-    until = 120.0
+    until = 600.0  # long enough (about 0.3 s a run here) for the main thread to wake dozens of times
     sequential = [tow_sim.Run(sc).run(until=until, every=1.0) for _ in range(2)]
     threaded, started, wakeups = [None, None], threading.Event(), [0]
 
@@ -186,13 +186,31 @@ def test_runs_in_threads_give_the_sequential_results_and_release_the_gil():
     for th in threads:
         th.start()
     started.wait()
+    begun = time.perf_counter()
     while any(th.is_alive() for th in threads):
         time.sleep(0.005)  # wakes only when the runs let go of the GIL
         wakeups[0] += 1
+    stepped = time.perf_counter() - begun
     for got in threaded:
         for name, want in sequential[0].items():
             assert np.array_equal(got[name], want, equal_nan=True), name
-    assert wakeups[0] >= 20, f"the main thread woke {wakeups[0]} times while two runs stepped: the GIL was held"
+    assert wakeups[0] >= 20, (f"the main thread woke {wakeups[0]} times in the {stepped:.3f} s two runs stepped: "
+                              "the GIL was held")
+
+
+def test_two_threads_first_runs_at_once_in_a_fresh_interpreter_finish():
+    # The first arrays a process makes initialise pybind11's NumPy API; when two threads made theirs at once it
+    # deadlocked (one held the GIL waiting for the initialisation, the other waited inside it for the GIL).
+    script = (
+        "import threading, tow_sim\n"
+        f"sc = tow_sim.load_scenario({os.path.join(SOURCE, 'scenarios', 'zigzag.yaml')!r})\n"
+        "threads = [threading.Thread(target=lambda: tow_sim.Run(sc).run(until=5.0, every=1.0)) for _ in range(2)]\n"
+        "for th in threads:\n    th.start()\n"
+        "for th in threads:\n    th.join()\n"
+        "print('done')\n")
+    for attempt in range(3):  # a race: a fresh interpreter each time
+        out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=60)
+        assert out.returncode == 0 and out.stdout.strip() == "done", (attempt, out.stdout, out.stderr)
 
 
 def test_bad_values_are_refused_naming_them_and_the_run_goes_on():
