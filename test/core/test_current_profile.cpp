@@ -100,9 +100,11 @@ TEST(CurrentProfile, UniformProfileIsGalilean)
   const double tension_gap = (moving_ship.sim->tensions() - moving_water.sim->tensions()).cwiseAbs().maxCoeff();
   std::printf("uniform profile vs moving ship after 60 s: joints %.2e m, tensions %.2e N\n", gap, tension_gap);
   // The two runs differ by the integration's error only: dopri5 at 1e-7 measured 2.7e-8 m and 6e-9
-  // relative; the implicit stepper at 2e-5, 4.9e-6 m and 1.7e-6 relative.
+  // relative; the implicit stepper at its tolerances of 1e-5 with steps of up to max_step (5 s), 3.2e-5 m
+  // (4.9e-6 m with steps of at most 0.5 s). Treating the current as the ship's motion wrongly moves the
+  // joints by metres.
   const bool implicit = test::suiteNumerics().stepper == StepperType::kImplicit;
-  EXPECT_LT(gap, implicit ? 2e-5 : 1e-6);  // [m]
+  EXPECT_LT(gap, implicit ? 1e-4 : 1e-6);  // [m]
   EXPECT_LT(tension_gap, (implicit ? 1e-5 : 1e-7) * moving_ship.sim->tensions().cwiseAbs().maxCoeff());
   // The cable did move: the comparison is not of two copies of the start.
   const Eigen::Matrix3Xd start = straightChain(*moving_ship.model, Eigen::Vector3d::Zero(), down_astern, u).x;

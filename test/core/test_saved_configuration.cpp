@@ -122,7 +122,7 @@ TEST(SavedConfiguration, RestoredUnderAnotherConfigurationItIsRefusedNamingTheKe
   other.config.numerics.max_step = 0.25;
   const std::string error = restoreError(other, path, false);
   EXPECT_NE(error.find("saved under another configuration: 2 keys differ: environment.current[1] (saved 0, now "
-                       "0.25), numerics.max_step (saved 0.5, now 0.25); initial_state.any_configuration: true "
+                       "0.25), numerics.max_step (saved 5, now 0.25); initial_state.any_configuration: true "
                        "loads it"),
             std::string::npos)
       << error;

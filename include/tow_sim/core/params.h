@@ -191,7 +191,7 @@ struct NumericsParams
   double implicit_position_tol = 1e-5;       // [m] absolute tolerance of implicit on positions, > 0 .. 10
   double implicit_velocity_tol = 1e-5;       // [m/s] absolute tolerance of implicit on velocities, > 0 .. 10
   double implicit_rel_tol = 1e-5;            // [-] relative tolerance of implicit, > 0 .. 1
-  double max_step = 0.5;                     // [s] largest adaptive step, > 0 .. 10
+  double max_step = 5.0;                     // [s] largest adaptive step, > 0 .. 10
   double fixed_step = 0.01;                  // [s] step of the fixed-step steppers, > 0 .. 1
   double tangential_smoothing_speed = 0.01;  // [m/s] Pode drag changes sign smoothly over this |u.s|, > 0 .. 1
 };
