@@ -127,9 +127,11 @@ bench: build
 	@echo "== bench/bench_python.py"
 	@source $(WS)/devel/setup.bash && TOW_SIM_BIN=$(WS)/devel/lib/tow_sim /usr/bin/python3 $(REPO)/bench/bench_python.py
 
-# Runs bench_steppers and writes its tables into docs/benchmarks.md with the commit and date (a few minutes).
+# Runs bench_chain, bench_steppers, bench_chart and bench_python.py and writes their figures into
+# docs/benchmarks.md with the commit and date (a few minutes).
 bench-docs: build
-	/usr/bin/python3 $(REPO)/scripts/bench_docs.py $(WS)/devel/lib/tow_sim --doc $(REPO)/docs/benchmarks.md
+	source $(WS)/devel/setup.bash && /usr/bin/python3 $(REPO)/scripts/bench_docs.py $(WS)/devel/lib/tow_sim \
+	  --doc $(REPO)/docs/benchmarks.md
 
 # The towfish estimator against the layback rules on a lawn-mower survey (docs/survey.md): about 2 minutes.
 survey-bench: build

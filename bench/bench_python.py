@@ -93,7 +93,11 @@ def main():
     args = parser.parse_args()
     batch = os.path.join(os.environ.get("TOW_SIM_BIN", ""), "tow_sim_batch")
     commit = subprocess.run(["git", "-C", SOURCE, "rev-parse", "--short", "HEAD"], capture_output=True, text=True)
-    print(f"bench_python: commit {commit.stdout.strip() or '?'}, {datetime.date.today()}, {os.cpu_count()} cores")
+    dirty = subprocess.run(["git", "-C", SOURCE, "status", "--porcelain", "--untracked-files=no"], capture_output=True,
+                           text=True).stdout.strip()
+    # The line scripts/bench_docs.py reads the provenance from.
+    print(f"bench_python: commit {commit.stdout.strip() or '?'}{' with local changes' if dirty else ''}, "
+          f"{datetime.date.today()}, {os.cpu_count()} cores, load average {os.getloadavg()[0]:.2f}")
     with tempfile.TemporaryDirectory() as folder:
         scenario = scenario_at_nu_100(folder)
         t_batch = median_seconds([batch, "--scenario", scenario, "--out", os.path.join(folder, "out")], args.repeats)

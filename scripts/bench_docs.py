@@ -2,19 +2,23 @@
 """Writes the benchmarks' figures into docs/benchmarks.md from a run, with the commit and date they came from
 (issue 28: figures that cannot go stale).
 
-    bench_docs.py BIN_DIR [--doc docs/benchmarks.md] [--json RUN.json ...] [--save-json DIR]
+    bench_docs.py BIN_DIR [--doc docs/benchmarks.md] [--json RUN.json ...] [--python-output FILE]
+                          [--no-python] [--save-json DIR]
 
-Runs BIN_DIR/bench_chain, bench_steppers and bench_chart (Google Benchmark, JSON output), or reads saved runs
-with --json (each names its executable), and replaces what lies between the markers
+Runs BIN_DIR/bench_chain, bench_steppers and bench_chart (Google Benchmark, JSON output) and bench/bench_python.py
+(the workspace sourced: it imports tow_sim), or reads saved runs with --json (each names its executable) and
+--python-output (bench_python.py's output), and replaces what lies between the markers
 
     <!-- bench:rhs -->  ...  <!-- /bench -->             bench_chain: one right-hand side, O(nu) and dense
     <!-- bench:steppers -->  ...  <!-- /bench -->        bench_steppers: the steppers against nu, and the deep tow
     <!-- bench:steppers-more -->  ...  <!-- /bench -->   bench_steppers: the elastic, parted and two-part rows
     <!-- bench:chart -->  ...  <!-- /bench -->           bench_chart: a 20 x 10 towing chart
+    <!-- bench:python -->  ...  <!-- /bench -->          bench_python.py: the Python module's costs, as printed
 
 with tables (simulated seconds per CPU second: the `realtime` counter; CPU times per call) and a line saying
-which commit, date and machine they came from. A benchmark missing from the run shows as a dash. Exit 2 when
-a marker is missing from the document or a run holds none of its benchmarks.
+which commit, date and machine they came from (a run saved with --save-json keeps the commit it ran at). A
+benchmark missing from the run shows as a dash. Exit 2 when a marker is missing from the document or a run
+holds none of its benchmarks.
 """
 import argparse
 import datetime
@@ -122,6 +126,7 @@ def more_table(found):
 
 def provenance(run, commit, bench):
     context = run.get("context", {})
+    commit = context.get("tow_sim_commit", commit)  # a saved run's own
     date = context.get("date", "")[:10] or datetime.date.today().isoformat()
     load = context.get("load_avg", [])
     machine = f"{context.get('num_cpus', '?')} CPUs at {context.get('mhz_per_cpu', '?')} MHz"
@@ -162,8 +167,25 @@ def blocks(bench, found):
     return out
 
 
-def write_doc(doc, runs, commit):
-    """Writes each run's blocks into `doc` (all or nothing)."""
+PYTHON_HEADER = re.compile(r"^bench_python: commit (.+?), (\d{4}-\d\d-\d\d), (\d+) cores(?:, load average ([\d.]+))?$")
+
+
+def python_block(output):
+    """The python block's lines from bench_python.py's output (its first line names the commit, date, cores and
+    load), or ValueError when that line is missing."""
+    lines = output.strip().splitlines()
+    header = PYTHON_HEADER.match(lines[0]) if lines else None
+    if not header or len(lines) < 2:
+        raise ValueError("the Python output does not start with bench_python.py's 'bench_python: commit ...' line")
+    commit, date, cores, load = header.groups()
+    machine = f"{cores} CPUs" + (f", load average {float(load):.2f} at the start" if load else "")
+    return [f"_Written by `scripts/bench_docs.py` from `bench/bench_python.py` at commit {commit} on {date} "
+            f"({machine}); read ratios, the machine is shared._", "", "```"] + lines[1:] + ["```"]
+
+
+def write_doc(doc, runs, commit, python_output=None):
+    """Writes each run's blocks, and the python block from bench_python.py's output when given, into `doc`
+    (all or nothing)."""
     with open(doc, encoding="utf-8") as f:
         text = f.read()
     for run in runs:
@@ -171,6 +193,8 @@ def write_doc(doc, runs, commit):
         line = provenance(run, commit, bench)
         for marker, lines in blocks(bench, results(run)).items():
             text = replace_block(text, marker, [line, ""] + lines)
+    if python_output is not None:
+        text = replace_block(text, "python", python_block(python_output))
     with open(doc, "w", encoding="utf-8") as f:
         f.write(text)
 
@@ -193,9 +217,13 @@ def main(argv=None):
     parser.add_argument("--doc", default=os.path.join(repo, "docs", "benchmarks.md"), help="the document to write")
     parser.add_argument("--json", action="append", default=[],
                         help="a saved run (BENCH --benchmark_format=json) instead of running; repeatable")
-    parser.add_argument("--save-json", help="also save each run here as BENCH.json")
+    parser.add_argument("--python-output", help="bench_python.py's saved output instead of running it")
+    parser.add_argument("--no-python", action="store_true", help="leave the python block as it is")
+    parser.add_argument("--save-json", help="also save each run here as BENCH.json (and bench_python.txt)")
     args = parser.parse_args(argv)
-    runs = []
+    if args.no_python and args.python_output:
+        parser.error("--no-python and --python-output exclude each other")
+    runs, commit = [], commit_of(repo)
     for path in args.json:
         with open(path, encoding="utf-8") as f:
             runs.append(json.load(f))
@@ -204,13 +232,25 @@ def main(argv=None):
             out = subprocess.run([os.path.join(args.bin_dir, bench), "--benchmark_format=json"], capture_output=True,
                                  text=True, check=True).stdout
             runs.append(json.loads(out))
+            runs[-1].setdefault("context", {})["tow_sim_commit"] = commit
+    python_output = None
+    if args.python_output:
+        with open(args.python_output, encoding="utf-8") as f:
+            python_output = f.read()
+    elif not args.no_python and not args.json:
+        python_output = subprocess.run([sys.executable, os.path.join(repo, "bench", "bench_python.py")],
+                                       capture_output=True, text=True, check=True,
+                                       env=dict(os.environ, TOW_SIM_BIN=args.bin_dir)).stdout
     if args.save_json:
         os.makedirs(args.save_json, exist_ok=True)
         for run in runs:
             with open(os.path.join(args.save_json, bench_name(run) + ".json"), "w", encoding="utf-8") as f:
                 json.dump(run, f, indent=1)
+        if python_output is not None:
+            with open(os.path.join(args.save_json, "bench_python.txt"), "w", encoding="utf-8") as f:
+                f.write(python_output)
     try:
-        write_doc(args.doc, runs, commit_of(repo))
+        write_doc(args.doc, runs, commit, python_output)
     except ValueError as e:
         print(f"bench_docs.py: {args.doc}: {e}", file=sys.stderr)
         return 2

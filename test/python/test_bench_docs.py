@@ -29,7 +29,16 @@ Prose between, 2035× typed by hand stays prose.
 <!-- bench:chart -->
 <!-- /bench -->
 
+<!-- bench:python -->
+an old output
+<!-- /bench -->
+
 Prose after.
+"""
+
+PYTHON = """bench_python: commit def5678 with local changes, 2026-12-04, 2 cores, load average 0.31
+600 s of turn_180 at nu = 100, whole processes (median of 5):
+  tow_sim_batch 0.598 s, python3 + tow_sim.Run.run 0.749 s: ratio 1.253
 """
 
 
@@ -104,6 +113,34 @@ def test_the_provenance_names_commit_date_and_machine_and_prose_is_untouched(tmp
     assert doc.read_text() == once  # a second write changes nothing
 
 
+def test_the_python_block_is_bench_pythons_output_under_its_own_provenance(tmp_path):
+    doc = tmp_path / "benchmarks.md"
+    doc.write_text(DOC)
+    bench_docs.write_doc(str(doc), RUNS, "abc1234", PYTHON)
+    block = doc.read_text().split("<!-- bench:python -->")[1].split("<!-- /bench -->")[0]
+    assert ("from `bench/bench_python.py` at commit def5678 with local changes on 2026-12-04 (2 CPUs, load "
+            "average 0.31 at the start)") in block
+    assert "```\n600 s of turn_180 at nu = 100, whole processes (median of 5):\n  tow_sim_batch 0.598 s," in block
+    assert "an old output" not in block and "bench_python: commit" not in block
+    doc.write_text(DOC)
+    bench_docs.write_doc(str(doc), RUNS, "abc1234")  # no output given: the block is left as it is
+    assert "an old output" in doc.read_text()
+    doc.write_text(DOC)
+    with pytest.raises(ValueError, match="bench_python: commit"):
+        bench_docs.write_doc(str(doc), RUNS, "abc1234", "600 s of turn_180 ...\n")
+    assert doc.read_text() == DOC
+
+
+def test_a_saved_run_keeps_the_commit_it_ran_at(tmp_path):
+    doc = tmp_path / "benchmarks.md"
+    doc.write_text(DOC)
+    saved = json.loads(json.dumps(RUN))
+    saved["context"]["tow_sim_commit"] = "0ld0ld0"
+    bench_docs.write_doc(str(doc), [saved], "abc1234")
+    block = doc.read_text().split("<!-- bench:steppers -->")[1].split("<!-- /bench -->")[0]
+    assert "at commit 0ld0ld0 on 2026-12-05" in block and "abc1234" not in block
+
+
 def test_a_missing_marker_or_an_empty_run_is_refused_and_the_document_kept(tmp_path):
     doc = tmp_path / "benchmarks.md"
     doc.write_text(DOC.replace("<!-- bench:steppers-more -->\n", ""))
@@ -130,3 +167,5 @@ def test_the_shipped_document_has_every_block_filled():
         assert len(rows) > 3, marker
         assert "Written by `scripts/bench_docs.py`" in text.split(f"<!-- bench:{marker} -->")[1]
     assert "The 200 steady tows of the chart:" in text
+    python = text.split("<!-- bench:python -->")[1].split("<!-- /bench -->")[0]
+    assert "from `bench/bench_python.py` at commit" in python and "tow_sim_sweep, 200 runs" in python
