@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -141,6 +142,43 @@ TEST(Fins, ServoSaturatesAndSlewsAtItsRate)
   servo.command(2.0, -0.1);  // reverses from where it is
   EXPECT_NEAR(servo.angleAt(2.5), 0.1, 1e-12);
   EXPECT_NEAR(servo.angleAt(9.0), -0.1, 1e-12);
+}
+
+// HeldServos (the tow point's frame's df/dt, solver.md (S28)): while it lives both fins stay at their angles
+// of t_held whatever the time; when it ends, also by an exception, they slew on as before.
+TEST(Fins, HeldServosStayAtTheirAnglesAndSlewOnAfterwards)
+{
+  Actuators a;
+  a.rudder = FinServo(0.4, 0.2);
+  a.elevator = FinServo(0.4, 0.2);
+  a.rudder.reset(0.0, 0.0);
+  a.elevator.reset(0.0, 0.1);
+  a.rudder.command(1.0, 0.3);
+  a.elevator.command(1.0, -0.1);
+  auto expectSlewing = [&]
+  {
+    EXPECT_NEAR(a.rudder.angleAt(1.5), 0.1, 1e-12);
+    EXPECT_NEAR(a.elevator.angleAt(1.5), 0.0, 1e-12);
+    EXPECT_NEAR(a.rudder.angleAt(9.0), 0.3, 1e-12);
+  };
+  {
+    const HeldServos held(a, 1.5);
+    for (double t : { 1.5, 1.6, 3.0 })
+    {
+      EXPECT_NEAR(a.rudder.angleAt(t), 0.1, 1e-12) << t;
+      EXPECT_NEAR(a.elevator.angleAt(t), 0.0, 1e-12) << t;
+    }
+  }
+  expectSlewing();
+  try
+  {
+    const HeldServos held(a, 1.5);
+    throw std::runtime_error("f threw");
+  }
+  catch (const std::runtime_error&)
+  {
+  }
+  expectSlewing();
 }
 
 TEST(AddedMass, RejectsAsymmetricOrIndefiniteMatrices)

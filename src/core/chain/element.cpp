@@ -230,6 +230,19 @@ void Depressor::dynamics(double t, const ElementKinematics& k, const Environment
   out.wrench.tail<3>() += (k.pointAt(p_.lift_from_bail / p_.length) - x_G).cross(L);
 }
 
+HeldServos::HeldServos(Actuators& actuators, double t_held)
+    : actuators_(actuators), rudder_(actuators.rudder.state()), elevator_(actuators.elevator.state())
+{
+  actuators.rudder.reset(t_held, actuators.rudder.angleAt(t_held));
+  actuators.elevator.reset(t_held, actuators.elevator.angleAt(t_held));
+}
+
+HeldServos::~HeldServos()
+{
+  actuators_.rudder.restore(rudder_);
+  actuators_.elevator.restore(elevator_);
+}
+
 Actuators EndBody::restingActuators(double t) const
 {
   Actuators a;

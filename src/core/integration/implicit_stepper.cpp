@@ -223,11 +223,11 @@ void combineStages(const RosenbrockTableau& rw, double h, const std::vector<doub
 }  // namespace
 
 void ImplicitStepper::stages(const RosenbrockTableau& rw, double t, double h, const std::vector<double>& y,
-                             const std::vector<double>& f0, const ShipMotion& ship, const Derivative& f,
-                             std::vector<double>& y_next, std::vector<double>& error)
+                             const std::vector<double>& f0, const ShipMotion& ship, Actuators& actuators,
+                             const Derivative& f, std::vector<double>& y_next, std::vector<double>& error)
 {
   if (tow_point_frame_)
-    stagesTowPoint(rw, t, h, y, f0, ship, f, y_next, error);
+    stagesTowPoint(rw, t, h, y, f0, ship, actuators, f, y_next, error);
   else
     stagesWorld(rw, t, h, y, f0, ship(t), f, y_next, error);
 }
@@ -315,8 +315,8 @@ void ImplicitStepper::relativeDerivative(const Derivative& f, const ShipEndState
 // y_next = y + h sum m_i k_i + S(t + h) - S(t), error (err) = h sum e_i k_i. Names here: stage_k_[i] is k_i,
 // K_t[i] is k_t,i.
 void ImplicitStepper::stagesTowPoint(const RosenbrockTableau& rw, double t, double h, const std::vector<double>& y,
-                                     const std::vector<double>& f0, const ShipMotion& ship, const Derivative& f,
-                                     std::vector<double>& y_next, std::vector<double>& error)
+                                     const std::vector<double>& f0, const ShipMotion& ship, Actuators& actuators,
+                                     const Derivative& f, std::vector<double>& y_next, std::vector<double>& error)
 {
   const size_t n = y.size();
   const ShipEndState at_t = ship(t);
@@ -324,9 +324,14 @@ void ImplicitStepper::stagesTowPoint(const RosenbrockTableau& rw, double t, doub
   stage_y_.resize(n);
   stage_f_.resize(n);
   // df_z/dt at (t, z): a forward difference over delta from f_z(t, z) = f(t, y) - S'(t), one more evaluation
-  // of f (its error, delta/2 d2f_z/dt2, is 1e-5 of the step's own O(h) change in f_z).
+  // of f (its error, delta/2 d2f_z/dt2, is 1e-5 of the step's own O(h) change in f_z), with the fin servos
+  // held as at t: a servo that slews at t may stop within the step (an autopilot's tick), and its slew taken
+  // for the whole step cost accuracy (docs/solver.md (S28)).
   const double delta = kTimeDerivativeStep * std::max(1.0, h);
-  relativeDerivative(f, at_t, t, delta, y, f_t_);
+  {
+    const HeldServos held(actuators, t);
+    relativeDerivative(f, at_t, t, delta, y, f_t_);
+  }
   stage_f_ = f0;
   subtractFrameRate(stage_f_, at_t);
   for (size_t q = 0; q < n; ++q)
@@ -335,12 +340,7 @@ void ImplicitStepper::stagesTowPoint(const RosenbrockTableau& rw, double t, doub
   for (int i = 0; i < rw.stages; ++i)
   {
     const double t_stage = stagePoint(rw, i, t, h, y, stage_k_, K_t, stage_y_);  // z + h sum_{j<i} a_ij k_j
-    if (i == 0)
-    {
-      stage_f_ = f0;  // f_z(t, z) = f(t, y) - S'(t)
-      subtractFrameRate(stage_f_, at_t);
-    }
-    else
+    if (i > 0)  // at i = 0, stage_f_ holds f_z(t, z) = f(t, y) - S'(t) from above
       relativeDerivative(f, at_t, t, t_stage - t, stage_y_, stage_f_);
     addStageHistory(rw, i, stage_k_, stage_f_);
     for (size_t q = 0; q < n; ++q)  // + gamma h k_t,i df_z/dt

@@ -52,7 +52,7 @@ bool Simulator::stepImplicit(double t_end, double winch_step, StepReport& report
   if (h != implicit_.step())
     implicit_.factor(h);  // (S19): N_XY for this h
   implicit_.stages(       // (S15): y_next = y + h sum m_i k_i and error_ = err = h sum e_i k_i
-      *tableau_, t_, h, y_, dydt_, ship_,
+      *tableau_, t_, h, y_, dydt_, ship_, data_.actuators,
       [this](double t, const StateVector& y, StateVector& dydt) { derivative(t, y, dydt); }, y_next_, error_);
   const bool clamped = h == remaining;
   const double t_next = clamped ? t_end : t_ + h;

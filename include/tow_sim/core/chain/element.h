@@ -131,6 +131,21 @@ struct Actuators
   double thrust = 0.0;        // [N] propeller thrust along x_b, saturated
 };
 
+// For its lifetime, holds the fin servos of `actuators` where they are at t_held [s] (their angles then
+// constant; the tow point's frame takes df/dt so, docs/solver.md (S28)); restores them when it ends.
+class HeldServos
+{
+public:
+  HeldServos(Actuators& actuators, double t_held);
+  ~HeldServos();
+  HeldServos(const HeldServos&) = delete;
+  HeldServos& operator=(const HeldServos&) = delete;
+
+private:
+  Actuators& actuators_;
+  const FinServo::State rudder_, elevator_;
+};
+
 // Element nu+1. Implementations: RigidEndElement here; the full towed vehicle plugs in the same way. An
 // end body is constant: whatever changes while running comes in as Actuators.
 class EndBody

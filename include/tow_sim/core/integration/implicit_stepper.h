@@ -98,12 +98,13 @@ public:
 
   // One step of the method `rw` (S15) from (t, y), f0 = f(t, y), the stage matrix factored for h [s]:
   // y_next and error, err = h sum e_i k_i (y_next less the embedded solution). In the world's frame the tow
-  // point's increments in stage i are k_t,i (v_1, a_1) of `ship` at t; in the tow point's, (S28).
+  // point's increments in stage i are k_t,i (v_1, a_1) of `ship` at t; in the tow point's, (S28), with df_z/dt
+  // taken while `actuators`, those f reads, hold their fin servos as at t (HeldServos).
   using Derivative = std::function<void(double t, const std::vector<double>& y, std::vector<double>& dydt)>;
   using ShipMotion = std::function<ShipEndState(double t)>;
   void stages(const RosenbrockTableau& rw, double t, double h, const std::vector<double>& y,
-              const std::vector<double>& f0, const ShipMotion& ship, const Derivative& f, std::vector<double>& y_next,
-              std::vector<double>& error);
+              const std::vector<double>& f0, const ShipMotion& ship, Actuators& actuators, const Derivative& f,
+              std::vector<double>& y_next, std::vector<double>& error);
 
   double step() const { return h_; }  // [s] as factored
 
@@ -123,7 +124,7 @@ private:
                    const std::vector<double>& f0, const ShipEndState& ship, const Derivative& f,
                    std::vector<double>& y_next, std::vector<double>& error);
   void stagesTowPoint(const RosenbrockTableau& rw, double t, double h, const std::vector<double>& y,
-                      const std::vector<double>& f0, const ShipMotion& ship, const Derivative& f,
+                      const std::vector<double>& f0, const ShipMotion& ship, Actuators& actuators, const Derivative& f,
                       std::vector<double>& y_next, std::vector<double>& error);
   void shift(std::vector<double>& y, const ShipEndState& from, const ShipEndState& to) const;
   void subtractFrameRate(std::vector<double>& dydt, const ShipEndState& frame) const;
