@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "core/scenario_runs.h"
 #include "tow_sim/core/run/tow_run.h"
 #include "tow_sim/scenario/scenario.h"
 #include "tow_sim/scenario/ship_path.h"
@@ -22,11 +23,6 @@ namespace tow_sim
 {
 namespace
 {
-Scenario shipped(const std::string& name)
-{
-  return loadScenarioFile(std::string(TOW_SIM_SOURCE_DIR) + "/scenarios/" + name + ".yaml");
-}
-
 NumericsParams dopri5(double tol)
 {
   NumericsParams n;
@@ -57,22 +53,7 @@ std::vector<TowSnapshot> run(Scenario sc, int segments, const NumericsParams& nu
                              std::shared_ptr<ShipHistory> ship = nullptr)
 {
   sc.config.cable.segments = segments;
-  sc.config.numerics = numerics;
-  if (!ship)
-    ship = std::make_shared<ShipHistory>(buildShipPath(sc));
-  TowRun tow(sc.config, ship, sc.initial);
-  tow.schedule(sc.commands);
-  if (sc.autopilot.enabled)
-    tow.setAutopilot(sc.autopilot);
-  tow.start(0.0);
-  std::vector<TowSnapshot> out;
-  const long outputs = std::lround(sc.duration / sc.output_interval);
-  for (long i = 0; i <= outputs; ++i)
-  {
-    tow.advanceTo(std::min(sc.duration, i * sc.output_interval));
-    out.push_back(tow.snapshot());
-  }
-  return out;
+  return test::scenarioOutputs(sc, numerics, std::move(ship));
 }
 
 struct Deviation
@@ -113,7 +94,7 @@ TEST(ImplicitStepping, ShippedScenariosAgreeWithTightDopri5)
   for (int segments : accuracySegments())
     for (const char* name : { "turn_180", "zigzag", "speed_change", "report_elevator_step" })
     {
-      const Scenario sc = shipped(name);
+      const Scenario sc = test::shippedScenario(name);
       const Deviation d = worstDeviation(run(sc, segments, implicitAdaptive()), run(sc, segments, dopri5(1e-10)));
       std::printf(
           "implicit vs dopri5 1e-10, %s, nu = %d: depth %.1e, layback %.1e, tension ship %.1e, "
@@ -132,7 +113,7 @@ TEST(ImplicitStepping, ShippedScenariosAgreeWithTightDopri5)
 // tight dopri5. The bending does move them (the tow point's tension by far more than the bar).
 TEST(ImplicitStepping, ABendingStiffCableAgreesWithTightDopri5)
 {
-  Scenario sc = shipped("turn_180");
+  Scenario sc = test::shippedScenario("turn_180");
   sc.duration = 300.0;
   sc.config.cable.bending_stiffness = 5000.0;  // [N m^2] on 6 m segments
   const std::vector<TowSnapshot> stiff = run(sc, 50, dopri5(1e-10));
@@ -189,7 +170,7 @@ struct StepErrors
 
 StepErrors fixedStepErrors(ImplicitMethod method)
 {
-  Scenario sc = shipped("speed_change");
+  Scenario sc = test::shippedScenario("speed_change");
   sc.duration = 300.0;
   sc.output_interval = 0.8;  // a multiple of every step
   const auto ship = smoothSpeedChange(sc.duration);
@@ -266,7 +247,7 @@ TEST(ImplicitStepping, Ros34pw2FixedStepsConvergeAtThirdOrder)
 // through the report's elevator step (docs/parameters.md, "numerics", for the limits of large fixed steps in turns).
 TEST(ImplicitStepping, AFineCableWithHalfSecondStepsStaysBoundedAndKeepsItsLengths)
 {
-  Scenario sc = shipped("report_elevator_step");
+  Scenario sc = test::shippedScenario("report_elevator_step");
   sc.duration = 600.0;
   const double segment = sc.config.cable.length / 1000.0;
   const std::vector<TowSnapshot> s = run(sc, 1000, implicitFixed(0.5));
@@ -293,7 +274,7 @@ TEST(ImplicitStepping, AFineCableWithHalfSecondStepsStaysBoundedAndKeepsItsLengt
 // From a straight line, a steady tow settles onto the equilibrium solver's shape.
 TEST(ImplicitStepping, ASteadyTowSettlesOntoTheEquilibrium)
 {
-  Scenario sc = shipped("report_elevator_step");
+  Scenario sc = test::shippedScenario("report_elevator_step");
   sc.commands.clear();
   sc.duration = 3000.0;
   sc.output_interval = 3000.0;

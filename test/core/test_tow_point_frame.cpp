@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "core/scenario_runs.h"
 #include "tow_sim/core/constants.h"
 #include "tow_sim/core/run/tow_run.h"
 #include "tow_sim/scenario/scenario.h"
@@ -72,24 +73,6 @@ NumericsParams implicitIn(ImplicitFrame frame, double max_step = 10.0)
   return n;
 }
 
-// A shipped scenario's outputs (its commands and autopilot in the loop) with `numerics`.
-std::vector<TowSnapshot> outputs(Scenario sc, const std::shared_ptr<ShipHistory>& ship, const NumericsParams& numerics)
-{
-  sc.config.numerics = numerics;
-  TowRun run(sc.config, ship, sc.initial);
-  run.schedule(sc.commands);
-  if (sc.autopilot.enabled)
-    run.setAutopilot(sc.autopilot);
-  run.start(0.0);
-  std::vector<TowSnapshot> out;
-  for (long i = 0; i * sc.output_interval <= sc.duration + 1e-9; ++i)
-  {
-    run.advanceTo(i * sc.output_interval);
-    out.push_back(run.snapshot());
-  }
-  return out;
-}
-
 NumericsParams dopri5(double tol)
 {
   NumericsParams n;
@@ -132,10 +115,10 @@ TEST(TowPointFrame, ShippedTurnsAgreeWithTightDopri5)
 {
   for (const char* name : { "turn_180", "zigzag" })
   {
-    const Scenario sc = loadScenarioFile(std::string(TOW_SIM_SOURCE_DIR) + "/scenarios/" + name + ".yaml");
+    const Scenario sc = test::shippedScenario(name);
     const auto ship = std::make_shared<ShipHistory>(buildShipPath(sc));
-    const std::vector<TowSnapshot> a = outputs(sc, ship, implicitIn(ImplicitFrame::kTowPoint, 0.5)),
-                                   ref = outputs(sc, ship, dopri5(1e-10));
+    const std::vector<TowSnapshot> a = test::scenarioOutputs(sc, implicitIn(ImplicitFrame::kTowPoint, 0.5), ship),
+                                   ref = test::scenarioOutputs(sc, dopri5(1e-10), ship);
     double depth = 0.0, layback = 0.0, tension_ship = 0.0, tension_vehicle = 0.0, diversion = 0.0;
     auto rel = [](double x, double y) { return std::abs(x - y) / std::abs(y); };
     for (size_t i = 0; i < ref.size(); ++i)
@@ -168,11 +151,11 @@ TEST(TowPointFrame, ShippedTurnsAgreeWithTightDopri5)
 // (the slew at t taken for the whole step), 2.7e-4 and 8.2e-4.
 TEST(TowPointFrame, AnAutopilotsTicksKeepItAsAccurateAsTheWorldFrame)
 {
-  Scenario sc = loadScenarioFile(std::string(TOW_SIM_SOURCE_DIR) + "/scenarios/autopilot_depth_turn.yaml");
+  Scenario sc = test::shippedScenario("autopilot_depth_turn");
   sc.duration = 130.0;
   ASSERT_TRUE(sc.autopilot.enabled);
   const auto ship = std::make_shared<ShipHistory>(buildShipPath(sc));
-  const std::vector<TowSnapshot> ref = outputs(sc, ship, dopri5(1e-10));
+  const std::vector<TowSnapshot> ref = test::scenarioOutputs(sc, dopri5(1e-10));
   auto worst = [&](const std::vector<TowSnapshot>& a)
   {
     Eigen::Vector2d e = Eigen::Vector2d::Zero();  // ship, vehicle
@@ -183,8 +166,8 @@ TEST(TowPointFrame, AnAutopilotsTicksKeepItAsAccurateAsTheWorldFrame)
     }
     return e;
   };
-  const Eigen::Vector2d world = worst(outputs(sc, ship, implicitIn(ImplicitFrame::kWorld, 5.0)));
-  const Eigen::Vector2d tow = worst(outputs(sc, ship, implicitIn(ImplicitFrame::kTowPoint, 5.0)));
+  const Eigen::Vector2d world = worst(test::scenarioOutputs(sc, implicitIn(ImplicitFrame::kWorld, 5.0)));
+  const Eigen::Vector2d tow = worst(test::scenarioOutputs(sc, implicitIn(ImplicitFrame::kTowPoint, 5.0)));
   std::printf("autopilot ticks, tension errors vs dopri5 1e-10: world %.1e, %.1e; tow_point %.1e, %.1e\n", world.x(),
               world.y(), tow.x(), tow.y());
   EXPECT_LT(tow.x(), 1.5 * world.x());
@@ -199,7 +182,7 @@ TEST(TowPointFrame, AnAutopilotsTicksKeepItAsAccurateAsTheWorldFrame)
 // chain through its first element and the run diverges about 2 s later (docs/solver.md §7).
 TEST(TowPointFrame, HalfSecondFixedStepsCrossATurnsStartOnAFineCable)
 {
-  Scenario sc = loadScenarioFile(std::string(TOW_SIM_SOURCE_DIR) + "/scenarios/turn_180.yaml");
+  Scenario sc = test::shippedScenario("turn_180");
   sc.config.cable.segments = 1000;
   sc.config.numerics.stepper = StepperType::kImplicitFixed;
   sc.config.numerics.fixed_step = 0.5;
