@@ -12,6 +12,19 @@ namespace
 using Matrix63d = Eigen::Matrix<double, 6, 3>;
 using Matrix36d = Eigen::Matrix<double, 3, 6>;
 
+// J^T X for a cable segment's J = [J_f J_a] (jointMap at vartheta = 1/2): J_f^T X = X_t/2 - S^T X_r and
+// J_a^T X = X_t/2 + S^T X_r, X_t and X_r X's force and moment rows, S = [s]x / d; the product J^T X
+// to rounding at a third of its arithmetic.
+Matrix6d projectOntoJoints(const ElementKinematics& k, const Matrix6d& X)
+{
+  const Eigen::Matrix3d S_t = skew(k.s).transpose() / k.length;
+  const Matrix36d r = S_t * X.bottomRows<3>();
+  Matrix6d out;
+  out.topRows<3>() = 0.5 * X.topRows<3>() - r;
+  out.bottomRows<3>() = 0.5 * X.topRows<3>() + r;
+  return out;
+}
+
 // (S16) for cable segment e: d w / d(v_f, v_a) and d w / d(x_f, x_a) of its wrench w at the CG (the centre,
 // vartheta = 1/2), then projected with [J_f J_a]^T as (S5) projects w: out.dh_dv is D, out.dh_dx is K.
 void segmentJacobian(const ChainModel& model, int e, double t, const ElementKinematics& k,
@@ -66,9 +79,8 @@ void segmentJacobian(const ChainModel& model, int e, double t, const ElementKine
                          });
   }
   // (S16): D = d(w_f, w_a)/d(v_f, v_a), K = d(w_f, w_a)/d(x_f, x_a), the wrench's derivatives projected as (S5).
-  const Matrix6d J = jointMap(k.s, k.length, 0.5);
-  out.dh_dv = J.transpose() * dw_dv;
-  out.dh_dx = J.transpose() * dw_dx;
+  out.dh_dv = projectOntoJoints(k, dw_dv);
+  out.dh_dx = projectOntoJoints(k, dw_dx);
   out.dh_dv.bottomRightCorner<3, 3>() += contact_v;
   out.dh_dx.bottomRightCorner<3, 3>() += contact_p;
   if (const JointBody* point = model.bodyAft(e, geometry))  // its drag on the aft joint (S23): D_aa

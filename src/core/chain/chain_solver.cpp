@@ -27,6 +27,40 @@ void addStretch(const CableParams& cable, double rest_length, double mass, const
   m.c = 0.0;
 }
 
+// (S1): [a_G; domega/dt] = J_f a_f + J_a a_a, J = [J_f J_a] (jointMap); (S5): M_XY = J_X^T M J_Y and
+// w_X = J_X^T w, M_f* and w_f (m.h_f) of (S3), M_a* and w_a (m.h_a) of (S4). J_f = [(1 - vartheta) I; -S],
+// J_a = [vartheta I; S], S = [s]x / d. When M has no coupling between translation and rotation (a cable
+// segment; a body whose CG is its centre of added mass), M = diag(M_t, M_r), the products reduce to
+// M_ff = (1 - vartheta)^2 M_t - Q, M_fa = M_af = vartheta (1 - vartheta) M_t + Q, M_aa = vartheta^2 M_t - Q
+// with Q = S M_r S, and w_f = (1 - vartheta) F + S tau, w_a = vartheta F - S tau (w = [F; tau]): the same
+// numbers to rounding, a fifth of the arithmetic (the cable's segments are all such).
+void projectOntoJoints(const BodyDynamics& body, const ElementKinematics& k, ElementTerms& m)
+{
+  const double theta = body.cg_fraction;
+  if (body.mass.topRightCorner<3, 3>().isZero(0.0) && body.mass.bottomLeftCorner<3, 3>().isZero(0.0))
+  {
+    const Eigen::Matrix3d S = skew(k.s) / k.length;
+    const Eigen::Matrix3d Q = S * body.mass.bottomRightCorner<3, 3>() * S;
+    const Eigen::Matrix3d M_t = body.mass.topLeftCorner<3, 3>();
+    m.M_ff = (1.0 - theta) * (1.0 - theta) * M_t - Q;
+    m.M_fa = theta * (1.0 - theta) * M_t + Q;
+    m.M_af = m.M_fa;
+    m.M_aa = theta * theta * M_t - Q;
+    const Eigen::Vector3d S_tau = S * body.wrench.tail<3>();
+    m.h_f = (1.0 - theta) * body.wrench.head<3>() + S_tau;
+    m.h_a = theta * body.wrench.head<3>() - S_tau;
+    return;
+  }
+  const Matrix6d J = jointMap(k.s, k.length, theta);
+  const Matrix6d MJ = body.mass * J;
+  m.M_ff = J.leftCols<3>().transpose() * MJ.leftCols<3>();
+  m.M_fa = J.leftCols<3>().transpose() * MJ.rightCols<3>();
+  m.M_af = J.rightCols<3>().transpose() * MJ.leftCols<3>();
+  m.M_aa = J.rightCols<3>().transpose() * MJ.rightCols<3>();
+  m.h_f = J.leftCols<3>().transpose() * body.wrench;
+  m.h_a = J.rightCols<3>().transpose() * body.wrench;
+}
+
 // Bending (physics.md §11, (P48); docs/solver.md §11): the moments on cable segment e (axis s) from the joints
 // at its two ends, each kappa_b theta toward straight, between it and its neighbours (none at the tow point or
 // the bail): a load in the wrench w like any other.
@@ -94,17 +128,8 @@ void ChainSolver::elementTerms(const ChainModel& model, const ChainGeometry& geo
     if (model.bends() && e < geometry.segments)
       body.wrench.tail<3>() += bendingMoments(model, geometry, ship.p_W, x, e, k.s);  // §11: couples in w
 
-    // (S1): [a_G; domega/dt] = J_f a_f + J_a a_a, J = [J_f J_a]; (S5): M_XY = J_X^T M J_Y and w_X = J_X^T w,
-    // M_f* and w_f (h_f) of (S3), M_a* and w_a (h_a) of (S4).
-    const Matrix6d J = jointMap(k.s, k.length, body.cg_fraction);
-    const Matrix6d MJ = body.mass * J;
     ElementTerms& m = terms_[static_cast<size_t>(e)];
-    m.M_ff = J.leftCols<3>().transpose() * MJ.leftCols<3>();
-    m.M_fa = J.leftCols<3>().transpose() * MJ.rightCols<3>();
-    m.M_af = J.rightCols<3>().transpose() * MJ.leftCols<3>();
-    m.M_aa = J.rightCols<3>().transpose() * MJ.rightCols<3>();
-    m.h_f = J.leftCols<3>().transpose() * body.wrench;
-    m.h_a = J.rightCols<3>().transpose() * body.wrench;
+    projectOntoJoints(body, k, m);
     m.s = k.s;
     m.constrained = !elastic;
     if (const JointBody* point = model.bodyAft(e, geometry))  // (S23): a point body on the aft joint, M_aa, w_a
