@@ -33,8 +33,8 @@ RHS_SEGMENTS = (10, 30, 100, 1000, 5000)
 SEGMENTS = (50, 100, 200, 1000, 2000)
 STEPPERS = (("dopri5", "dopri5"), ("rk4", "rk4"), ("implicit", "implicit"), ("implicit_ros2", "ros2"))
 MORE = (
-    ("steady/implicit_tow_point/nu:{}", SEGMENTS, "steady, implicit in the tow point's frame (implicit_frame: tow_point)"),
-    ("turn/implicit_tow_point/nu:{}", SEGMENTS, "turn, implicit in the tow point's frame"),
+    ("steady/implicit_world/nu:{}", SEGMENTS, "steady, implicit in the world frame (implicit_frame: world)"),
+    ("turn/implicit_world/nu:{}", SEGMENTS, "turn, implicit in the world frame"),
     ("steady/implicit_elastic_ea1e8/nu:{}", (50, 100, 200, 1000), "steady, elastic cable (EA 1e8 N), implicit"),
     ("turn/implicit_elastic_ea1e8/nu:{}", (50, 100, 200, 1000), "turn, elastic cable (EA 1e8 N), implicit"),
     ("parted/implicit_elastic_ea1e8/nu:{}", (100,), "parted elastic cable, 0.10-0.13 s after the parting, implicit"),

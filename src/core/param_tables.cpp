@@ -158,9 +158,9 @@ const ParamTable<NumericsParams>& numericsParams()
                   "or ros2 (2 stages, order 2, embedded order 1)")
           .choice("implicit_frame", &N::implicit_frame,
                   { { "world", ImplicitFrame::kWorld }, { "tow_point", ImplicitFrame::kTowPoint } },
-                  "the implicit steppers' stages: world (the tow point's motion enters through the first element) "
-                  "or tow_point (the joints relative to the tow point: fine cables in turns take far longer steps; "
-                  "solver.md (S28))")
+                  "the implicit steppers' stages: tow_point (the joints relative to the tow point's motion "
+                  "continued with its acceleration: fine cables in turns take far longer steps) or world (the tow "
+                  "point's motion enters through the first element); solver.md (S28)")
           .number("abs_tol", &N::abs_tol, "-", 0.0, 1.0, kOpen, "absolute error tolerance of dopri5 (m, m/s)")
           .number("rel_tol", &N::rel_tol, "-", 0.0, 1.0, kOpen, "relative error tolerance of dopri5")
           .number("implicit_position_tol", &N::implicit_position_tol, "m", 0.0, 10.0, kOpen,

@@ -177,15 +177,15 @@ enum class ImplicitMethod
 // The frame the implicit steppers' stages are taken in (docs/solver.md (S28)).
 enum class ImplicitFrame
 {
-  kWorld,    // the joints as they are, the tow point's motion entering through the first element (default)
-  kTowPoint  // the joints relative to the tow point, its motion entering every joint alike
+  kWorld,    // the joints as they are, the tow point's motion entering through the first element
+  kTowPoint  // the joints relative to the tow point, its motion entering every joint alike (default)
 };
 
 struct NumericsParams
 {
   StepperType stepper = StepperType::kImplicit;
   ImplicitMethod implicit_method = ImplicitMethod::kRos34pw2;
-  ImplicitFrame implicit_frame = ImplicitFrame::kWorld;
+  ImplicitFrame implicit_frame = ImplicitFrame::kTowPoint;
   double abs_tol = 1e-7;                     // [-] absolute error tolerance of dopri5 (m, m/s), > 0 .. 1
   double rel_tol = 1e-7;                     // [-] relative error tolerance of dopri5, > 0 .. 1
   double implicit_position_tol = 1e-5;       // [m] absolute tolerance of implicit on positions, > 0 .. 10
