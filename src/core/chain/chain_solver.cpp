@@ -30,7 +30,7 @@ void addStretch(const CableParams& cable, double rest_length, double mass, const
 // (S1): [a_G; domega/dt] = J_f a_f + J_a a_a, J = [J_f J_a] (jointMap); (S5): M_XY = J_X^T M J_Y and
 // w_X = J_X^T w, M_f* and w_f (m.h_f) of (S3), M_a* and w_a (m.h_a) of (S4). J_f = [(1 - vartheta) I; -S],
 // J_a = [vartheta I; S], S = [s]x / d. When M has no coupling between translation and rotation (a cable
-// segment; a body whose CG is its centre of added mass), M = diag(M_t, M_r), the products reduce to
+// segment; a body whose CG is its centre of added mass), M = diag(M_t, M_r), the products reduce to (S5b)
 // M_ff = (1 - vartheta)^2 M_t - Q, M_fa = M_af = vartheta (1 - vartheta) M_t + Q, M_aa = vartheta^2 M_t - Q
 // with Q = S M_r S, and w_f = (1 - vartheta) F + S tau, w_a = vartheta F - S tau (w = [F; tau]): the same
 // numbers to rounding, a fifth of the arithmetic (the cable's segments are all such).
