@@ -223,13 +223,12 @@ struct Variant
   const char* label;
 };
 const ImplicitFrame kDefaultFrame = NumericsParams().implicit_frame;
-const Variant kVariants[] = {
-  { StepperType::kDopri5, ImplicitMethod::kRos34pw2, kDefaultFrame, "dopri5" },
-  { StepperType::kRk4, ImplicitMethod::kRos34pw2, kDefaultFrame, "rk4" },
-  { StepperType::kImplicit, ImplicitMethod::kRos34pw2, kDefaultFrame, "implicit" },
-  { StepperType::kImplicit, ImplicitMethod::kRos34pw2, ImplicitFrame::kWorld, "implicit_world" },
-  { StepperType::kImplicit, ImplicitMethod::kRos2, kDefaultFrame, "implicit_ros2" }
-};
+const Variant kVariants[] = { { StepperType::kDopri5, ImplicitMethod::kRos34pw2, kDefaultFrame, "dopri5" },
+                              { StepperType::kRk4, ImplicitMethod::kRos34pw2, kDefaultFrame, "rk4" },
+                              { StepperType::kImplicit, ImplicitMethod::kRos34pw2, kDefaultFrame, "implicit" },
+                              { StepperType::kImplicit, ImplicitMethod::kRos34pw2, ImplicitFrame::kWorld,
+                                "implicit_world" },
+                              { StepperType::kImplicit, ImplicitMethod::kRos2, kDefaultFrame, "implicit_ros2" } };
 
 void registerAll()
 {
