@@ -78,9 +78,16 @@ def rhs_table(found):
 
 def chart_lines(found):
     b = found.get("BM_TowingChart20x10")
-    if b is None:
-        return ["The chart: —"]
-    return [f"The 200 steady tows of the chart: {duration(b)} of CPU."]
+    lines = [f"The 200 steady tows of the chart: {duration(b)} of CPU." if b is not None else "The chart: —"]
+    sparse = {n: found.get(f"BM_Response/sparse/{n}") for n in (200, 1000)}
+    dense = found.get("BM_Response/dense/200")
+    if any(sparse.values()) or dense:
+        def cell(b):
+            return duration(b) if b is not None else "—"
+        lines += ["", "The response to heave at 100 periods (the linearisation included), CPU:", "",
+                  "| ν | O(ν) per period (motionResponses) | dense (motionResponsesDense) |", "|---|---|---|",
+                  f"| 200 | {cell(sparse[200])} | {cell(dense)} |", f"| 1000 | {cell(sparse[1000])} | — |"]
+    return lines
 
 
 def results(run):

@@ -22,7 +22,7 @@ LAYERS = [
     ["fins", "seabed", "element", "ship_response"],
     ["added_mass", "vehicle"],
     ["chain_model"],
-    ["chain_state", "chain_solver", "chain_jacobian", "rosenbrock_tableau", "run_report", "winch"],
+    ["chain_state", "chain_solver", "element_equations", "chain_jacobian", "rosenbrock_tableau", "run_report", "winch"],
     ["chain", "implicit_stepper", "explicit_stepper", "jacobian_check", "modes", "strumming"],
     ["simulator"],
     ["equilibrium", "ship_track", "odometry_check", "gnss_track", "depth_autopilot", "track_trail", "simulation_config"],
@@ -32,6 +32,7 @@ LAYERS = [
 LAYER = {name: i for i, names in enumerate(LAYERS) for name in names}
 # Core sources that implement a header of another name.
 SOURCES = {
+    "joint_response": "modes",
     "faired_loads": "element",
     "simulator_implicit": "simulator",
     "simulator_parting": "simulator",

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "chain_fixtures.h"
+#include "tow_sim/config/config.h"
 #include "tow_sim/core/constants.h"
 #include "tow_sim/core/run/tow_run.h"
 #include "tow_sim/scenario/towing_chart.h"
@@ -107,6 +108,65 @@ TEST(MotionResponse, HeaveAndSurgeResponsesAgreeWithSmallAmplitudeRunsInTheTimeD
       EXPECT_LT(std::abs(td.tension_ship - fd[k].tension_ship), 0.02 * std::abs(fd[k].tension_ship)) << periods[k];
     }
   }
+}
+
+// motionResponses (the joints' displacements, each element linearised alone, a sparse solve per period) against
+// motionResponsesDense (angle coordinates that keep every length, each differenced through the whole solve, a
+// dense solve): two formulations of the same small motions, on a tow in a cross current and on a two-part tow
+// with sections, a clump, a float and a winged depressor; heave, surge, sway and pitch inputs.
+TEST(MotionResponse, TheSparsePathAgreesWithTheDenseLinearisation)
+{
+  SimulationConfig cross = test::shortTightTow();
+  cross.cable.segments = 30;
+  const SimulationConfig two_part = loadConfig(YAML::Load(R"(
+cable:
+  length: 330.0
+  sections:
+    - {length: 200.0, segments: 20}
+    - {depressor: {length: 2.0, mass: 400.0, wing_area: 0.5, lift_coefficient: 0.8}}
+    - {length: 128.0, segments: 16, diameter: 0.02, mass_per_length: 0.35}
+  bodies:
+    - {at: 202.0, mass: 300.0, displaced_volume: 0.05, drag_area: 0.3, added_mass: 40.0}
+    - {at: 266.0, mass: 20.0, displaced_volume: 0.05, drag_area: 0.15, added_mass: 50.0})"));
+  const std::vector<double> periods = { 2.0, 5.0, 12.0, 30.0, 80.0 };
+  const std::vector<Eigen::Vector3d> inputs = { Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitX(),
+                                                Eigen::Vector3d::UnitY(),
+                                                towPointMotion("pitch", Eigen::Vector3d(-30.0, 0.0, -3.0)) };
+  const std::pair<const SimulationConfig*, Eigen::Vector3d> cases[] = { { &cross, Eigen::Vector3d(0.1, 0.3, 0.0) },
+                                                                        { &two_part, Eigen::Vector3d::Zero() } };
+  double worst = 0.0;
+  for (const auto& [config, current] : cases)
+  {
+    const std::unique_ptr<TowRun> run = steadyTowRun(*config, 1.5, config->cable.length, current);
+    const Simulator& sim = run->simulator();
+    const ChainState state = sim.state();
+    const auto response = [&](auto path)
+    {
+      return path(run->model(), sim.geometry(), sim.data(), sim.time(), sim.firstJoint(), state.x, state.v, inputs,
+                  periods, 0.5, 1e-6);
+    };
+    const auto sparse = response(motionResponses), dense = response(motionResponsesDense);
+    using Field = std::complex<double> MotionResponse::*;
+    for (Field field : { &MotionResponse::surge, &MotionResponse::sway, &MotionResponse::heave, &MotionResponse::pitch,
+                         &MotionResponse::tension_ship, &MotionResponse::tension_vehicle })
+      for (size_t i = 0; i < inputs.size(); ++i)
+      {
+        // Against the largest of that output over the inputs and periods (the differencing's noise is of it),
+        // and for the motions at least the input's own 1 m (or 1 rad) per unit.
+        const bool tension = field == &MotionResponse::tension_ship || field == &MotionResponse::tension_vehicle;
+        double scale = tension ? 0.0 : 1.0;
+        for (const std::vector<MotionResponse>& by_period : dense)
+          for (const MotionResponse& r : by_period)
+            scale = std::max(scale, std::abs(r.*field));
+        for (size_t k = 0; k < periods.size(); ++k)
+          worst = std::max(worst, std::abs(sparse[i][k].*field - dense[i][k].*field) / scale);
+        for (size_t k = 0; k < periods.size(); ++k)
+          EXPECT_LT(std::abs(sparse[i][k].*field - dense[i][k].*field), 1e-6 * scale)
+              << "input " << i << ", period " << periods[k] << " s: " << sparse[i][k].*field << " against "
+              << dense[i][k].*field;
+      }
+  }
+  std::printf("the sparse path's largest difference from the dense one: %.1e of its scale\n", worst);
 }
 
 TEST(MotionResponse, BadPeriodsAndInputsAreRefused)

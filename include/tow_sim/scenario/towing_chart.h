@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <memory>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -40,6 +41,9 @@ void payOutTo(SimulationConfig& config, double cable_out);
 // snapshot at t = 0. Throws std::invalid_argument for a cable out payOutTo refuses or a configuration the run
 // refuses, std::runtime_error when no equilibrium was found (the reason in what()).
 TowSnapshot steadyTow(const SimulationConfig& config, double speed, double cable_out, const Eigen::Vector3d& current_W);
+// The run that holds that steady tow (calm water, no winch, no seabed), for analyses of its state.
+std::unique_ptr<TowRun> steadyTowRun(const SimulationConfig& config, double speed, double cable_out,
+                                     const Eigen::Vector3d& current_W);
 // The natural modes about that steady tow (modes.h; tow_sim_modes), in ascending natural frequency. Throws as
 // steadyTow, and std::invalid_argument for an elastic cable.
 std::vector<Mode> steadyTowModes(const SimulationConfig& config, double speed, double cable_out,

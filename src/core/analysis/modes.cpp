@@ -275,12 +275,12 @@ std::vector<Mode> naturalModes(const ChainModel& model, const ChainGeometry& geo
   return modes;
 }
 
-std::vector<std::vector<MotionResponse>> motionResponses(const ChainModel& model, const ChainGeometry& geometry,
-                                                         const ChainData& data, double t, const ShipEndState& ship,
-                                                         const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
-                                                         const std::vector<Eigen::Vector3d>& inputs,
-                                                         const std::vector<double>& periods, double cg_fraction,
-                                                         double step)
+std::vector<std::vector<MotionResponse>> motionResponsesDense(const ChainModel& model, const ChainGeometry& geometry,
+                                                              const ChainData& data, double t, const ShipEndState& ship,
+                                                              const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
+                                                              const std::vector<Eigen::Vector3d>& inputs,
+                                                              const std::vector<double>& periods, double cg_fraction,
+                                                              double step)
 {
   const ElementFrames f = framesOf(model, geometry, ship, x);
   const Linearisation L = linearise(model, geometry, data, t, ship, x, v, step, f, inputs);

@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 
+#include "tow_sim/core/chain/element_equations.h"
 #include "tow_sim/core/geometry.h"
 
 namespace tow_sim
@@ -106,9 +107,7 @@ Eigen::Vector3d ChainSolver::solveFree(const ChainModel& model, const ChainGeome
   return sweep_.solveFree(terms_, a, tensions, multipliers, first_force);
 }
 
-// (S1)-(S6): each element's loads (ChainModel::elementDynamics) and its Newton-Euler equations (S2) projected
-// onto its forward and aft joint accelerations, the terms of (S3) (forward joint) and (S4) (aft joint). Names
-// here: body.cg_fraction is vartheta of (S1), m.h_f and m.h_a are w_f and w_a, m.c is Psi.
+// (S1)-(S6): each element's equations (elementEquations) from the end body forward.
 void ChainSolver::elementTerms(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data, double t,
                                const ShipEndState& ship, const Eigen::Ref<const Eigen::Matrix3Xd>& x,
                                const Eigen::Ref<const Eigen::Matrix3Xd>& v)
@@ -119,37 +118,51 @@ void ChainSolver::elementTerms(const ChainModel& model, const ChainGeometry& geo
     const Eigen::Vector3d x_f = e == 0 ? ship.p_W : Eigen::Vector3d(x.col(e - 1));
     const Eigen::Vector3d v_f = e == 0 ? ship.v_W : Eigen::Vector3d(v.col(e - 1));
     const ElementKinematics k = ElementKinematics::fromJoints(x_f, x.col(e), v_f, v.col(e));
-    const bool elastic = model.elastic() && e < geometry.segments;
-    model.elementDynamics(e, t, k, geometry, data, body, !elastic);
-    // (S6), winch: while the winch changes the first segment's length d_1, its axis s = (x_a - x_f)/d_1 turns
-    // with domega/dt = s x (a_a - a_f)/d_1 - 2 (L'/d_1) omega (L' = first_rate): the known part goes to w.
-    if (e == 0 && geometry.first_rate != 0.0)
-      body.wrench -= body.mass.rightCols<3>() * (-2.0 * geometry.first_rate / k.length * k.omega);
+    const Eigen::Vector3d* bending = nullptr;
+    Eigen::Vector3d moments;
     if (model.bends() && e < geometry.segments)
-      body.wrench.tail<3>() += bendingMoments(model, geometry, ship.p_W, x, e, k.s);  // §11: couples in w
-
-    ElementTerms& m = terms_[static_cast<size_t>(e)];
-    projectOntoJoints(body, k, m);
-    m.s = k.s;
-    m.constrained = !elastic;
-    if (const JointBody* point = model.bodyAft(e, geometry))  // (S23): a point body on the aft joint, M_aa, w_a
     {
-      m.M_aa.diagonal().array() += point->inertia();
-      m.h_a += point->force(data.environment, t, k.x_a, k.v_a);
+      moments = bendingMoments(model, geometry, ship.p_W, x, e, k.s);  // §11: couples in w
+      bending = &moments;
     }
-    if (elastic)
-    {
-      addStretch(model.segmentCable(e, geometry), geometry.elementLength(e), model.segmentModel(e, geometry).mass, k,
-                 m);
-      m.h_a += model.segmentContactForce(e, k, geometry);  // at its aft joint itself
-      continue;
-    }
-    // (S6): s.(a_a - a_f) = Psi, Psi = -|v_a - v_f|^2 / d; at the winch |x_a - x_f| = d_1(t) gives
-    // Psi = (L'^2 + d_1 L'' - |v_a - v_f|^2) / d_1 (L' = first_rate, L'' = first_acceleration).
-    m.c = -(k.v_a - k.v_f).squaredNorm() / k.length;
-    if (e == 0)
-      m.c += geometry.first_rate * geometry.first_rate / k.length + geometry.first_acceleration;
+    elementEquations(model, geometry, data, t, e, k, bending, body, terms_[static_cast<size_t>(e)]);
   }
+}
+
+// (S1)-(S6) for element e: its loads (ChainModel::elementDynamics) and its Newton-Euler equations (S2) projected
+// onto its forward and aft joint accelerations, the terms of (S3) (forward joint) and (S4) (aft joint). Names
+// here: body.cg_fraction is vartheta of (S1), m.h_f and m.h_a are w_f and w_a, m.c is Psi.
+void elementEquations(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data, double t, int e,
+                      const ElementKinematics& k, const Eigen::Vector3d* bending, BodyDynamics& body, ElementTerms& m)
+{
+  const bool elastic = model.elastic() && e < geometry.segments;
+  model.elementDynamics(e, t, k, geometry, data, body, !elastic);
+  // (S6), winch: while the winch changes the first segment's length d_1, its axis s = (x_a - x_f)/d_1 turns
+  // with domega/dt = s x (a_a - a_f)/d_1 - 2 (L'/d_1) omega (L' = first_rate): the known part goes to w.
+  if (e == 0 && geometry.first_rate != 0.0)
+    body.wrench -= body.mass.rightCols<3>() * (-2.0 * geometry.first_rate / k.length * k.omega);
+  if (bending)
+    body.wrench.tail<3>() += *bending;
+
+  projectOntoJoints(body, k, m);
+  m.s = k.s;
+  m.constrained = !elastic;
+  if (const JointBody* point = model.bodyAft(e, geometry))  // (S23): a point body on the aft joint, M_aa, w_a
+  {
+    m.M_aa.diagonal().array() += point->inertia();
+    m.h_a += point->force(data.environment, t, k.x_a, k.v_a);
+  }
+  if (elastic)
+  {
+    addStretch(model.segmentCable(e, geometry), geometry.elementLength(e), model.segmentModel(e, geometry).mass, k, m);
+    m.h_a += model.segmentContactForce(e, k, geometry);  // at its aft joint itself
+    return;
+  }
+  // (S6): s.(a_a - a_f) = Psi, Psi = -|v_a - v_f|^2 / d; at the winch |x_a - x_f| = d_1(t) gives
+  // Psi = (L'^2 + d_1 L'' - |v_a - v_f|^2) / d_1 (L' = first_rate, L'' = first_acceleration).
+  m.c = -(k.v_a - k.v_f).squaredNorm() / k.length;
+  if (e == 0)
+    m.c += geometry.first_rate * geometry.first_rate / k.length + geometry.first_acceleration;
 }
 
 // (S8)-(S13), matrices only, from the end body (nothing pulls on its tail point: Lambda = 0) to the ship.

@@ -53,12 +53,24 @@ std::vector<MotionResponse> motionResponse(const ChainModel& model, const ChainG
                                            const Eigen::Vector3d& input, const std::vector<double>& periods,
                                            double cg_fraction, double step = 1e-6);
 
-// The same for several inputs at once: the linearisation once, one factorisation per period; [input][period].
+// The same for several inputs at once; [input][period]. In the joints' own displacements, each element linearised
+// alone (central differences of its loads in its two joints) and one sparse factorisation per period: O(nu) per
+// period and in the linearisation (docs/physics.md §12, (P53b)). An elastic or a bending cable, whose loads reach
+// past the element, takes motionResponsesDense.
 std::vector<std::vector<MotionResponse>> motionResponses(const ChainModel& model, const ChainGeometry& geometry,
                                                          const ChainData& data, double t, const ShipEndState& ship,
                                                          const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
                                                          const std::vector<Eigen::Vector3d>& inputs,
                                                          const std::vector<double>& periods, double cg_fraction,
                                                          double step = 1e-6);
+
+// The same in the angle coordinates of naturalModes, every coordinate differenced through the whole solve and a
+// dense factorisation per period: O(nu^2) and O(nu^3). The reference for motionResponses.
+std::vector<std::vector<MotionResponse>> motionResponsesDense(const ChainModel& model, const ChainGeometry& geometry,
+                                                              const ChainData& data, double t, const ShipEndState& ship,
+                                                              const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
+                                                              const std::vector<Eigen::Vector3d>& inputs,
+                                                              const std::vector<double>& periods, double cg_fraction,
+                                                              double step = 1e-6);
 
 }  // namespace tow_sim
