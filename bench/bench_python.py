@@ -8,10 +8,13 @@
 2. Short steps: 60 s in 0.05 s steps driven from Python (advance_to and snapshot per step) against the same steps
    in the module's C++ loop (Run.run), the difference per step.
 3. A 200-run sweep (tow_sim_sweep, 60 s runs) as tow_sim_batch processes against in process through the module.
+4. tow_sim_fatigue on a one-hour run's folder (outputs and shapes every 0.5 s, 52 joints: the size of
+   scenarios/head_seas.yaml run for an hour; its tensions a made-up irregular history), the whole process.
 Prints the medians and their ratio with the commit and the date, for the docs.
 """
 import argparse
 import datetime
+import math
 import os
 import statistics
 import subprocess
@@ -87,6 +90,23 @@ def sweep_seconds(folder, batch, extra):
     return time.perf_counter() - start
 
 
+def fatigue_seconds(folder, repeats):
+    """[s] of wall time for tow_sim_fatigue over a one-hour folder (7201 outputs and shapes of 52 joints)."""
+    run = os.path.join(folder, "hour")
+    os.makedirs(run, exist_ok=True)
+    times = [0.5 * k for k in range(7201)]
+    tension = [[40e3 + 3e3 * math.sin(0.6 * t + j) + 1e3 * math.sin(1.7 * t + 0.3 * j) for j in range(52)]
+               for t in times]
+    with open(os.path.join(run, "timeseries.csv"), "w") as f:
+        f.write("t,tension_ship,tension_vehicle\n")
+        f.writelines(f"{t},{row[0]:.6f},{row[-1]:.6f}\n" for t, row in zip(times, tension))
+    with open(os.path.join(run, "shapes.csv"), "w") as f:
+        f.write("t,joint,x,y,z,tension,slack\n")
+        f.writelines(f"{t},{j + 1},0,0,0,{row[j]:.6f},0\n" for t, row in zip(times, tension) for j in range(52))
+    script = os.path.join(SOURCE, "scripts", "tow_sim_fatigue")
+    return median_seconds([sys.executable, script, run, "--breaking-load", "500000"], repeats)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=5)
@@ -116,6 +136,8 @@ def main():
         module = min(sweep_seconds(folder, batch, []) for _ in range(2))
         print(f"tow_sim_sweep, 200 runs of 60 s on {os.cpu_count()} cores (best of 2): tow_sim_batch processes "
               f"{processes:.2f} s, in process through the module {module:.2f} s: {processes / module:.2f}x faster")
+        print(f"tow_sim_fatigue on a one-hour run (outputs and shapes every 0.5 s, 52 joints; median of "
+              f"{args.repeats}): {fatigue_seconds(folder, args.repeats):.2f} s")
 
 
 if __name__ == "__main__":

@@ -70,3 +70,40 @@ def test_a_head_sea_run_has_its_damage_where_the_heave_reaches_the_cable(tmp_pat
     assert float(rows["ship"]["damage_per_hour"]) > float(rows["vehicle"]["damage_per_hour"]) > 0
     assert fatigue.main([str(tmp_path / "run"), "--curve", "0:5"]) == 2
     assert fatigue.main([str(tmp_path / "nowhere")]) == 2
+
+
+def test_a_bag_counts_as_the_same_histories_in_a_run_folder(tmp_path):
+    import rosbag
+    from tow_sim.msg import CableState
+
+    t = [0.5 * k for k in range(200)]
+    ship = [40e3 + 5e3 * math.sin(0.7 * x) + 1e3 * math.sin(2.3 * x) for x in t]
+    vehicle = [10e3 + 2e3 * math.cos(0.7 * x) for x in t]
+    joints = [[s - 100.0 * j * (1.0 + math.sin(0.1 * x)) for j in range(4)] for s, x in zip(ship, t)]
+    bag_path = tmp_path / "tow.bag"
+    with rosbag.Bag(str(bag_path), "w") as bag:
+        for k, x in enumerate(t):
+            m = CableState()
+            m.header.stamp = type(m.header.stamp).from_sec(100.0 + x)
+            m.tension_ship, m.tension_vehicle, m.tension = ship[k], vehicle[k], joints[k]
+            for _ in range(2 if k == 50 else 1):  # a state the node held and published again: counted once
+                bag.write("/tow_sim/cable/state", m, m.header.stamp)
+    # The same histories as a batch run's folder (joint 1 the tow point).
+    run = tmp_path / "run"
+    run.mkdir()
+    with open(run / "timeseries.csv", "w") as f:
+        f.write("t,tension_ship,tension_vehicle\n")
+        f.writelines(f"{x!r},{s!r},{v!r}\n" for x, s, v in zip(t, ship, vehicle))
+    with open(run / "shapes.csv", "w") as f:
+        f.write("t,joint,tension\n")
+        f.writelines(f"{x!r},{j + 1},{tension[j]!r}\n" for x, tension in zip(t, joints) for j in range(4))
+    assert fatigue.main([str(bag_path), "--breaking-load", "200000", "--from", "10"]) == 0
+    assert fatigue.main([str(run), "--breaking-load", "200000", "--from", "10"]) == 0
+    with open(tmp_path / "tow" / "fatigue.csv") as f:
+        from_bag = list(csv.DictReader(f))
+    with open(run / "fatigue.csv") as f:
+        from_run = list(csv.DictReader(f))
+    assert [r["location"] for r in from_bag] == ["ship", "vehicle", "joint_1", "joint_2", "joint_3", "joint_4"]
+    assert from_bag == from_run and float(from_bag[0]["cycles"]) > 10
+    # A bag has no configuration: the breaking load must be given.
+    assert fatigue.main([str(bag_path)]) == 2
