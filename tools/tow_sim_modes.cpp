@@ -119,7 +119,7 @@ int main(int argc, char** argv)
     const double u = number(speed, "--speed", -20.0, 20.0);
     const double l = cable_out ? number(cable_out, "--cable-out", 1e-3, 1e5) : config.cable.length;
     n = count ? static_cast<size_t>(number(count, "--count", 1.0, 1e6)) : n;
-    modes = steadyTowModes(config, u, l, Eigen::Vector3d::Zero());
+    modes = steadyTowModes(config, u, l, Eigen::Vector3d::Zero(), n);  // the n lowest, O(nu) per iteration
   }
   catch (const std::invalid_argument& e)
   {

@@ -222,13 +222,16 @@ void bindModes(py::module_& m)
 {
   m.def(
       "modes",
-      [](const SimulationConfig& c, double speed, std::optional<double> cable_out, const py::object& current)
+      [](const SimulationConfig& c, double speed, std::optional<double> cable_out, const py::object& current,
+         std::optional<std::size_t> count)
       {
         const Eigen::Vector3d current_W = vector3(current, "current");
+        if (count && *count == 0)
+          throw py::value_error("count must be at least 1 (or None: every mode)");
         std::vector<Mode> modes;
         {
           py::gil_scoped_release released;
-          modes = steadyTowModes(c, speed, cable_out.value_or(c.cable.length), current_W);
+          modes = steadyTowModes(c, speed, cable_out.value_or(c.cable.length), current_W, count.value_or(0));
         }
         py::list out;
         for (const Mode& mode : modes)
@@ -238,8 +241,10 @@ void bindModes(py::module_& m)
         return out;
       },
       "config"_a, "speed"_a, "cable_out"_a = py::none(), "current"_a = py::make_tuple(0.0, 0.0, 0.0),
+      "count"_a = py::none(),
       "The natural modes about the steady tow (tow_sim_modes), in ascending natural frequency: dicts of period [s] "
-      "(inf: decays without oscillating), frequency [rad/s], damping_ratio, dominant and shape ((nu + 1, 3) [m]).");
+      "(inf: decays without oscillating), frequency [rad/s], damping_ratio, dominant and shape ((nu + 1, 3) [m]). "
+      "count: the lowest count only (O(nu) per iteration; None: every mode, a dense eigenproblem).");
 }
 
 void bindStrumming(py::module_& m)

@@ -79,11 +79,13 @@ TowSnapshot steadyTow(const SimulationConfig& config, double speed, double cable
 }
 
 std::vector<Mode> steadyTowModes(const SimulationConfig& config, double speed, double cable_out,
-                                 const Eigen::Vector3d& current_W)
+                                 const Eigen::Vector3d& current_W, std::size_t count)
 {
   const std::unique_ptr<TowRun> run = steadyTowRun(config, speed, cable_out, current_W);
   const Simulator& sim = run->simulator();
   const ChainState state = sim.state();
+  if (count > 0)
+    return lowestModes(run->model(), sim.geometry(), sim.data(), sim.time(), sim.firstJoint(), state.x, state.v, count);
   return naturalModes(run->model(), sim.geometry(), sim.data(), sim.time(), sim.firstJoint(), state.x, state.v);
 }
 

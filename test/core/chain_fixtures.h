@@ -36,6 +36,19 @@ inline SimulationConfig shortTightTow()
   return config;
 }
 
+// A small two-part tow (config YAML): 200 m of cable in 20 segments, a winged depressor with a clump at its aft
+// attachment, then 128 m of light tether in 16 segments with a float on it.
+inline constexpr const char* kSmallTwoPartTow = R"(
+cable:
+  length: 330.0
+  sections:
+    - {length: 200.0, segments: 20}
+    - {depressor: {length: 2.0, mass: 400.0, wing_area: 0.5, lift_coefficient: 0.8}}
+    - {length: 128.0, segments: 16, diameter: 0.02, mass_per_length: 0.35}
+  bodies:
+    - {at: 202.0, mass: 300.0, displaced_volume: 0.05, drag_area: 0.3, added_mass: 40.0}
+    - {at: 266.0, mass: 20.0, displaced_volume: 0.05, drag_area: 0.15, added_mass: 50.0})";
+
 // An end element that is one more cable segment: same length, mass, diameter and coefficients.
 inline EndElementParams endLikeSegment(const CableParams& cable)
 {

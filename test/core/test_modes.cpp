@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "chain_fixtures.h"
+#include "tow_sim/config/config.h"
 #include "tow_sim/core/analysis/equilibrium.h"
 #include "tow_sim/core/analysis/modes.h"
 #include "tow_sim/core/chain/chain_state.h"
@@ -21,11 +22,16 @@ namespace tow_sim
 {
 namespace
 {
-std::vector<Mode> hangingModes(const CableParams& cable, const EndElementParams& end, const Environment& env)
+// Every mode (naturalModes, dense) with count 0, else the count lowest (lowestModes, by Arnoldi).
+std::vector<Mode> hangingModes(const CableParams& cable, const EndElementParams& end, const Environment& env,
+                               std::size_t count = 0)
 {
   const auto model = test::makeModel(cable, end, env);
   const ChainState state =
       straightChain(*model, Eigen::Vector3d::Zero(), -Eigen::Vector3d::UnitZ(), Eigen::Vector3d::Zero());
+  if (count > 0)
+    return lowestModes(*model, model->initialGeometry(), model->initialData(0.0), 0.0, ShipEndState(), state.x, state.v,
+                       count);
   return naturalModes(*model, model->initialGeometry(), model->initialData(0.0), 0.0, ShipEndState(), state.x, state.v);
 }
 }  // namespace
@@ -42,31 +48,36 @@ TEST(Modes, AChainHangingInStillWaterSwingsAtBesselsFrequenciesWithAddedMassAndB
   cable.tangential_drag_coefficient = 0.0;
   const EndElementParams end = test::endLikeSegment(cable);  // the 81st segment
   Environment env;
-  const std::vector<Mode> modes = hangingModes(cable, end, env);
-  ASSERT_EQ(modes.size(), 2u * 81u);
-  // Transverse motion of a continuous chain: (mu + mu_a) y'' = d/dz (w z dy/dz), w = (mu - rho A) g.
-  const double area = 0.25 * kPi * cable.diameter * cable.diameter, L = 81.0;
-  const double w = (cable.mass_per_length - env.water_density * area) * env.gravity;
-  const double inertia = cable.mass_per_length + cable.added_mass_coefficient * env.water_density * area;
-  const double zeros[] = { 2.404825557695773, 5.520078110286311, 8.653727912911013 };
-  for (int k = 0; k < 3; ++k)
+  // Both ways: every mode of the dense eigenproblem, and the lowest six by Arnoldi on the joints' amplitudes.
+  for (const std::size_t count : { std::size_t(0), std::size_t(6) })
   {
-    const double expected = 0.5 * zeros[k] * std::sqrt(w / (inertia * L));
-    // Each mode twice, in two planes (the vertical chain has no preferred one).
-    const double a = modes[2 * k].frequency, b = modes[2 * k + 1].frequency;
-    std::printf("hanging mode %d: %.6f and %.6f rad/s, Bessel %.6f rad/s (%.2e)\n", k + 1, a, b, expected,
-                a / expected - 1.0);
-    EXPECT_NEAR(a / expected, 1.0, 2e-3) << k;
-    EXPECT_NEAR(b / a, 1.0, 1e-9) << k;
-    EXPECT_NEAR(modes[2 * k].damping_ratio, 0.0, 1e-9) << k;
-    EXPECT_NEAR(2.0 * kPi / modes[2 * k].period, a, 1e-9 * a) << k;
+    SCOPED_TRACE(count == 0 ? "dense" : "lowestModes");
+    const std::vector<Mode> modes = hangingModes(cable, end, env, count);
+    ASSERT_EQ(modes.size(), count == 0 ? 2u * 81u : count);
+    // Transverse motion of a continuous chain: (mu + mu_a) y'' = d/dz (w z dy/dz), w = (mu - rho A) g.
+    const double area = 0.25 * kPi * cable.diameter * cable.diameter, L = 81.0;
+    const double w = (cable.mass_per_length - env.water_density * area) * env.gravity;
+    const double inertia = cable.mass_per_length + cable.added_mass_coefficient * env.water_density * area;
+    const double zeros[] = { 2.404825557695773, 5.520078110286311, 8.653727912911013 };
+    for (int k = 0; k < 3; ++k)
+    {
+      const double expected = 0.5 * zeros[k] * std::sqrt(w / (inertia * L));
+      // Each mode twice, in two planes (the vertical chain has no preferred one).
+      const double a = modes[2 * k].frequency, b = modes[2 * k + 1].frequency;
+      std::printf("hanging mode %d: %.6f and %.6f rad/s, Bessel %.6f rad/s (%.2e)\n", k + 1, a, b, expected,
+                  a / expected - 1.0);
+      EXPECT_NEAR(a / expected, 1.0, 2e-3) << k;
+      EXPECT_NEAR(b / a, 1.0, 1e-9) << k;
+      EXPECT_NEAR(modes[2 * k].damping_ratio, 0.0, 1e-9) << k;
+      EXPECT_NEAR(2.0 * kPi / modes[2 * k].period, a, 1e-9 * a) << k;
+    }
+    // The first mode's shape: the largest displacement 1, at the tail; the joint below the tow point hardly moves.
+    const Eigen::Matrix3Xd& shape = modes[0].shape;
+    EXPECT_NEAR(shape.cwiseAbs().maxCoeff(), 1.0, 1e-9);
+    const Eigen::VectorXd moved = shape.colwise().norm();
+    EXPECT_EQ(std::max_element(moved.data(), moved.data() + moved.size()) - moved.data(), moved.size() - 1);
+    EXPECT_LT(moved(0), 0.05 * moved(moved.size() - 1));
   }
-  // The first mode's shape: the largest displacement 1, at the tail; the joint below the tow point hardly moves.
-  const Eigen::Matrix3Xd& shape = modes[0].shape;
-  EXPECT_NEAR(shape.cwiseAbs().maxCoeff(), 1.0, 1e-9);
-  const Eigen::VectorXd moved = shape.colwise().norm();
-  EXPECT_EQ(std::max_element(moved.data(), moved.data() + moved.size()) - moved.data(), moved.size() - 1);
-  EXPECT_LT(moved(0), 0.05 * moved(moved.size() - 1));
 }
 
 TEST(Modes, AHeavyBodyOnALightCableSwingsAsTheTwoDegreeOfFreedomPendulum)
@@ -83,26 +94,61 @@ TEST(Modes, AHeavyBodyOnALightCableSwingsAsTheTwoDegreeOfFreedomPendulum)
   end.transverse_inertia = 2.0;
   Environment env;
   env.water_density = 0.0;
-  const std::vector<Mode> modes = hangingModes(cable, end, env);
-  // The string of length L and the body (mass M, CG c below the bail, inertia I about it), by Lagrange:
-  // M = [[M L^2, M L c], [M L c, M c^2 + I]], K = diag(M g L, M g c).
-  const double M = end.mass, L = cable.length, c = end.cg_from_bail, I = *end.transverse_inertia, g = env.gravity;
-  Eigen::Matrix2d mass, stiffness;
-  mass << M * L * L, M * L * c, M * L * c, M * c * c + I;
-  stiffness << M * g * L, 0.0, 0.0, M * g * c;
-  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix2d> pendulum(stiffness, mass);
-  for (int k = 0; k < 2; ++k)
+  for (const std::size_t count : { std::size_t(0), std::size_t(6) })  // dense, and Arnoldi's lowest six
   {
-    const double expected = std::sqrt(pendulum.eigenvalues()(k));
-    const double a = modes[2 * k].frequency, b = modes[2 * k + 1].frequency;
-    std::printf("pendulum mode %d: %.6f and %.6f rad/s, closed form %.6f rad/s (%.2e)\n", k + 1, a, b, expected,
-                a / expected - 1.0);
-    EXPECT_NEAR(a / expected, 1.0, 1e-4) << k;
-    EXPECT_NEAR(b / expected, 1.0, 1e-4) << k;
+    SCOPED_TRACE(count == 0 ? "dense" : "lowestModes");
+    const std::vector<Mode> modes = hangingModes(cable, end, env, count);
+    // The string of length L and the body (mass M, CG c below the bail, inertia I about it), by Lagrange:
+    // M = [[M L^2, M L c], [M L c, M c^2 + I]], K = diag(M g L, M g c).
+    const double M = end.mass, L = cable.length, c = end.cg_from_bail, I = *end.transverse_inertia, g = env.gravity;
+    Eigen::Matrix2d mass, stiffness;
+    mass << M * L * L, M * L * c, M * L * c, M * c * c + I;
+    stiffness << M * g * L, 0.0, 0.0, M * g * c;
+    const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix2d> pendulum(stiffness, mass);
+    for (int k = 0; k < 2; ++k)
+    {
+      const double expected = std::sqrt(pendulum.eigenvalues()(k));
+      const double a = modes[2 * k].frequency, b = modes[2 * k + 1].frequency;
+      std::printf("pendulum mode %d: %.6f and %.6f rad/s, closed form %.6f rad/s (%.2e)\n", k + 1, a, b, expected,
+                  a / expected - 1.0);
+      EXPECT_NEAR(a / expected, 1.0, 1e-4) << k;
+      EXPECT_NEAR(b / expected, 1.0, 1e-4) << k;
+    }
+    EXPECT_EQ(modes[2].dominant.rfind("vehicle", 0), 0u) << modes[2].dominant;  // the body's own swing
+    // The light cable's own modes are far above: a string of 1 g under the body's weight.
+    EXPECT_GT(modes[4].frequency, 20.0 * modes[2].frequency);
   }
-  EXPECT_EQ(modes[2].dominant.rfind("vehicle", 0), 0u) << modes[2].dominant;  // the body's own swing
-  // The light cable's own modes are far above: a string of 1 g under the body's weight.
-  EXPECT_GT(modes[4].frequency, 20.0 * modes[2].frequency);
+}
+
+// lowestModes (shift-invert Arnoldi on the joints' amplitudes, each element linearised alone) against naturalModes
+// (angle coordinates differenced through the whole solve, the dense eigenproblem): the ten lowest modes of a steady
+// tow in a cross current and of a two-part tow (sections, a clump, a float, a winged depressor), whose modes are
+// apart (a hanging chain's come in equal pairs, whose shapes are not unique).
+TEST(Modes, TheLowestModesByArnoldiAreTheDenseOnes)
+{
+  SimulationConfig cross = test::shortTightTow();
+  cross.cable.segments = 30;
+  const SimulationConfig two_part = loadConfig(YAML::Load(test::kSmallTwoPartTow));
+  const std::pair<const SimulationConfig*, double> cases[] = { { &cross, 0.5 }, { &two_part, 1.5 } };
+  for (const auto& [config, speed] : cases)
+  {
+    const Eigen::Vector3d current(0.1, 0.3, 0.0);
+    const std::vector<Mode> dense = steadyTowModes(*config, speed, config->cable.length, current);
+    const std::vector<Mode> lowest = steadyTowModes(*config, speed, config->cable.length, current, 10);
+    ASSERT_EQ(lowest.size(), 10u);
+    for (size_t k = 0; k < lowest.size(); ++k)
+    {
+      std::printf("mode %zu: %.6f rad/s, damping ratio %.6f, %s (dense: %.6f, %.6f, %s)\n", k + 1, lowest[k].frequency,
+                  lowest[k].damping_ratio, lowest[k].dominant.c_str(), dense[k].frequency, dense[k].damping_ratio,
+                  dense[k].dominant.c_str());
+      EXPECT_NEAR(lowest[k].frequency / dense[k].frequency, 1.0, 1e-6) << k;
+      EXPECT_NEAR(lowest[k].damping_ratio, dense[k].damping_ratio, 1e-6) << k;
+      EXPECT_EQ(lowest[k].period == dense[k].period || std::abs(lowest[k].period / dense[k].period - 1.0) < 1e-6, true)
+          << k << ": " << lowest[k].period << " against " << dense[k].period;
+      EXPECT_EQ(lowest[k].dominant, dense[k].dominant) << k;
+      EXPECT_LT((lowest[k].shape - dense[k].shape).cwiseAbs().maxCoeff(), 1e-5) << k;
+    }
+  }
 }
 
 // The damping too, against the dynamics themselves: the steady tow at 0.2 m/s started with the vehicle turned
@@ -112,7 +158,8 @@ TEST(Modes, TheSteadyTowsVehicleYawModeRingsAtItsPeriodAndDampingInAFreeDecay)
 {
   const SimulationConfig config = test::shortTightTow();
   const double speed = 0.2;
-  const std::vector<Mode> modes = steadyTowModes(config, speed, config.cable.length, Eigen::Vector3d::Zero());
+  // The lowest 20 by Arnoldi (lowestModes): the yaw mode is among them.
+  const std::vector<Mode> modes = steadyTowModes(config, speed, config.cable.length, Eigen::Vector3d::Zero(), 20);
   const auto yaw_mode = std::find_if(
       modes.begin(), modes.end(), [](const Mode& m) { return m.dominant == "vehicle yaw" && std::isfinite(m.period); });
   ASSERT_NE(yaw_mode, modes.end());

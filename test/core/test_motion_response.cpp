@@ -118,16 +118,7 @@ TEST(MotionResponse, TheSparsePathAgreesWithTheDenseLinearisation)
 {
   SimulationConfig cross = test::shortTightTow();
   cross.cable.segments = 30;
-  const SimulationConfig two_part = loadConfig(YAML::Load(R"(
-cable:
-  length: 330.0
-  sections:
-    - {length: 200.0, segments: 20}
-    - {depressor: {length: 2.0, mass: 400.0, wing_area: 0.5, lift_coefficient: 0.8}}
-    - {length: 128.0, segments: 16, diameter: 0.02, mass_per_length: 0.35}
-  bodies:
-    - {at: 202.0, mass: 300.0, displaced_volume: 0.05, drag_area: 0.3, added_mass: 40.0}
-    - {at: 266.0, mass: 20.0, displaced_volume: 0.05, drag_area: 0.15, added_mass: 50.0})"));
+  const SimulationConfig two_part = loadConfig(YAML::Load(test::kSmallTwoPartTow));
   const std::vector<double> periods = { 2.0, 5.0, 12.0, 30.0, 80.0 };
   const std::vector<Eigen::Vector3d> inputs = { Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitX(),
                                                 Eigen::Vector3d::UnitY(),

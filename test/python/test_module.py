@@ -257,13 +257,18 @@ def test_the_modes_are_tow_sim_modes(tmp_path):
                     "--out", str(tmp_path)], check=True, capture_output=True)
     with open(tmp_path / "modes.csv") as f:
         want = list(csv.DictReader(f))
-    got = tow_sim.modes(tow_sim.load_config(str(config)), speed=0.2)
+    got = tow_sim.modes(tow_sim.load_config(str(config)), speed=0.2)  # every mode: the dense eigenproblem
     # 82 angles: one mode per complex pair of eigenvalues, one per real eigenvalue (a mode that only decays)
     assert 2 * 41 <= len(got) <= 4 * 41 and got[0]["shape"].shape == (41, 3)
-    for row, mode in zip(want, got):
+    lowest = tow_sim.modes(tow_sim.load_config(str(config)), speed=0.2, count=12)  # the tool's: by Arnoldi
+    assert len(lowest) == len(want) == 12
+    for row, mode, dense in zip(want, lowest, got):
         for key in ("period", "frequency", "damping_ratio"):
             assert mode[key] == pytest.approx(float(row[key]), rel=1e-9), key
-        assert mode["dominant"] == row["dominant"]
+            assert mode[key] == pytest.approx(dense[key], rel=1e-6), key
+        assert mode["dominant"] == row["dominant"] == dense["dominant"]
+    with pytest.raises(ValueError, match="count"):
+        tow_sim.modes(tow_sim.load_config(str(config)), speed=0.2, count=0)
     yaw = next(m for m in got if m["dominant"] == "vehicle yaw")
     assert 6.0 < yaw["period"] < 7.0 and 0.0 < yaw["damping_ratio"] < 0.1  # test_modes rings it in the time domain
 

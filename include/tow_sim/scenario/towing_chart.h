@@ -44,10 +44,11 @@ TowSnapshot steadyTow(const SimulationConfig& config, double speed, double cable
 // The run that holds that steady tow (calm water, no winch, no seabed), for analyses of its state.
 std::unique_ptr<TowRun> steadyTowRun(const SimulationConfig& config, double speed, double cable_out,
                                      const Eigen::Vector3d& current_W);
-// The natural modes about that steady tow (modes.h; tow_sim_modes), in ascending natural frequency. Throws as
-// steadyTow, and std::invalid_argument for an elastic cable.
+// The natural modes about that steady tow (modes.h; tow_sim_modes), in ascending natural frequency: every one
+// (naturalModes, dense) with count 0, else the `count` lowest (lowestModes, O(nu) per iteration). Throws as
+// steadyTow.
 std::vector<Mode> steadyTowModes(const SimulationConfig& config, double speed, double cable_out,
-                                 const Eigen::Vector3d& current_W);
+                                 const Eigen::Vector3d& current_W, std::size_t count = 0);
 // The steady response about that steady tow to the tow point moving harmonically along `input` (a translation
 // [m] per unit input), at each of `periods` [s] (modes.h, motionResponse; tow_sim_response). Throws as
 // steadyTowModes, and std::invalid_argument for a period outside (0, 1e5] s or a zero input.

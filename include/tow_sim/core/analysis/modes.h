@@ -35,6 +35,14 @@ std::vector<Mode> naturalModes(const ChainModel& model, const ChainGeometry& geo
                                const ShipEndState& ship, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
                                double step = 1e-6);
 
+// The `count` lowest natural modes (ascending natural frequency) of naturalModes, by shift-invert Arnoldi about zero
+// frequency on the joints' amplitudes of motionResponses: O(nu) per iteration (docs/physics.md §12, (P52b)). An
+// elastic or bending cable takes naturalModes (dense) and its first `count`. Throws std::runtime_error where the
+// linearised chain has a mode of zero frequency.
+std::vector<Mode> lowestModes(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data, double t,
+                              const ShipEndState& ship, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
+                              std::size_t count, double step = 1e-6);
+
 // The steady response to a harmonic motion of the tow point along `input` (a translation per unit input: (0, 0, 1)
 // for heave, or the tow point's displacement per radian of the ship's pitch), per unit input amplitude, as complex
 // amplitudes (magnitude and phase relative to the input's displacement): the same linearisation as the modes,
