@@ -12,7 +12,7 @@ Runs BIN_DIR/bench_chain, bench_steppers and bench_chart (Google Benchmark, JSON
     <!-- bench:rhs -->  ...  <!-- /bench -->             bench_chain: one right-hand side, O(nu) and dense
     <!-- bench:steppers -->  ...  <!-- /bench -->        bench_steppers: the steppers against nu, and the deep tow
     <!-- bench:steppers-more -->  ...  <!-- /bench -->   bench_steppers: the elastic, parted and two-part rows
-    <!-- bench:chart -->  ...  <!-- /bench -->           bench_chart: a 20 x 10 towing chart
+    <!-- bench:chart -->  ...  <!-- /bench -->           bench_chart: a 20 x 10 towing chart, the response and modes
     <!-- bench:python -->  ...  <!-- /bench -->          bench_python.py: the Python module's costs, as printed
 
 with tables (simulated seconds per CPU second: the `realtime` counter; CPU times per call) and a line saying
