@@ -107,3 +107,9 @@ def test_a_bag_counts_as_the_same_histories_in_a_run_folder(tmp_path):
     assert from_bag == from_run and float(from_bag[0]["cycles"]) > 10
     # A bag has no configuration: the breaking load must be given.
     assert fatigue.main([str(bag_path)]) == 2
+    # Counting from past the bag's last message leaves nothing to count, as it does for a run folder.
+    assert fatigue.main([str(bag_path), "--breaking-load", "200000", "--from", "1000"]) == 0
+    assert fatigue.main([str(run), "--breaking-load", "200000", "--from", "1000"]) == 0
+    header = "location,samples,cycles,max_range,mean_tension,damage,damage_per_hour,life_hours\n"
+    with open(tmp_path / "tow" / "fatigue.csv") as f, open(run / "fatigue.csv") as g:
+        assert f.read() == g.read() == header
