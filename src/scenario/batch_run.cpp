@@ -44,7 +44,7 @@ std::vector<double> timeseriesValues(const TowSnapshot& s)
                             o.p_cg_W.x(),
                             o.p_cg_W.y(),
                             o.p_cg_W.z(),
-                            0.0,  // vehicle_roll: the report's vehicle does not roll
+                            s.roll,  // vehicle_roll: 0 unless vehicle.roll is free
                             s.pitch,
                             s.yaw,
                             s.depth,

@@ -1,6 +1,7 @@
 #include "tow_sim/core/chain/chain.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -9,6 +10,7 @@ namespace tow_sim
 Chain::Chain(const ChainGeometry& geometry, const StateLayout& layout) : geometry_(geometry), layout_(layout)
 {
   layout_.joints = geometry_.jointCount();
+  layout_.roll = geometry_.rollingEnd();
   tensions_.setZero(3, layout_.joints);
   accelerations_.setZero(3, layout_.joints);
 }
@@ -29,15 +31,18 @@ void Chain::derivative(const ChainModel& model, const ChainGeometry& geometry, c
   const StateLayout& L = layout_;
   L.positions(dydt) = L.velocities(y);
   Eigen::Map<Eigen::Matrix3Xd> a = L.velocities(dydt);
+  solver_.setEndRoll(L.rollState(y));
   if (!L.free)
-  {
     solver_.solve(model, geometry, data, t, ship, L.positions(y), L.velocities(y), a);
-    return;
+  else
+  {
+    const ShipEndState end = firstJoint(ship, y);
+    L.freePosition(dydt) = L.freeVelocity(y);
+    L.freeVelocity(dydt) = solver_.solveFree(model, geometry, data, t, end, L.positions(y), L.velocities(y), a, nullptr,
+                                             nullptr, freeEndContact(model, geometry, end));
   }
-  const ShipEndState end = firstJoint(ship, y);
-  L.freePosition(dydt) = L.freeVelocity(y);
-  L.freeVelocity(dydt) = solver_.solveFree(model, geometry, data, t, end, L.positions(y), L.velocities(y), a, nullptr,
-                                           nullptr, freeEndContact(model, geometry, end));
+  if (L.roll)
+    rollDerivative(model, data, t, ship, y, a, dydt);
 }
 
 void Chain::refresh(const ChainModel& model, const ChainData& data, double t, const ShipEndState& ship,
@@ -46,6 +51,7 @@ void Chain::refresh(const ChainModel& model, const ChainData& data, double t, co
   const StateLayout& L = layout_;
   tensions_.resize(3, L.joints);
   accelerations_.resize(3, L.joints);
+  solver_.setEndRoll(L.rollState(y));
   if (L.free)
   {
     const ShipEndState end = firstJoint(ship, y);
@@ -59,6 +65,46 @@ void Chain::refresh(const ChainModel& model, const ChainData& data, double t, co
                   &multipliers_);
   L.positions(dydt) = L.velocities(y);
   L.velocities(dydt) = accelerations_;
+  if (L.roll)
+    rollDerivative(model, data, t, ship, y, accelerations_, dydt);
+}
+
+// physics.md (P57)-(P58): the end body's roll angle and spin rates, from its joints' accelerations a (and the
+// first joint's: the ship's, or a free one's in dydt).
+void Chain::rollDerivative(const ChainModel& model, const ChainData& data, double t, const ShipEndState& ship,
+                           const StateVector& y, const Eigen::Ref<const Eigen::Matrix3Xd>& a, StateVector& dydt) const
+{
+  const StateLayout& L = layout_;
+  const int e = L.joints - 1;
+  const Eigen::Vector3d a_f =
+      e > 0 ? Eigen::Vector3d(a.col(e - 1)) : (L.free ? Eigen::Vector3d(L.freeVelocity(dydt)) : ship.a_W);
+  const Eigen::Vector2d rates =
+      model.endBody().rollRates(t, elementKinematics(e, ship, y), data.environment, data.actuators, a_f, a.col(e));
+  L.rollAngle(dydt) = rates.x();
+  L.rollRate(dydt) = rates.y();
+}
+
+// docs/solver.md (S29): d(dp/dt)/dphi and d(dp/dt)/dp by central differences, the joints' accelerations held.
+Eigen::Vector2d Chain::spinAccelerationDerivatives(const ChainModel& model, const ChainData& data, double t,
+                                                   const ShipEndState& ship, const StateVector& y,
+                                                   const StateVector& dydt) const
+{
+  const StateLayout& L = layout_;
+  const int e = L.joints - 1;
+  const auto a = L.velocities(dydt);
+  const Eigen::Vector3d a_f =
+      e > 0 ? Eigen::Vector3d(a.col(e - 1)) : (L.free ? Eigen::Vector3d(L.freeVelocity(dydt)) : ship.a_W);
+  const ElementKinematics k = elementKinematics(e, ship, y);
+  auto spin = [&](double droll, double drate)
+  {
+    ElementKinematics kk = k;
+    kk.roll += droll;
+    kk.roll_rate += drate;
+    return model.endBody().rollRates(t, kk, data.environment, data.actuators, a_f, a.col(e)).y();
+  };
+  const double h_angle = 1e-5, h_rate = 1e-5 * std::max(1.0, std::abs(k.roll_rate));
+  return { (spin(h_angle, 0.0) - spin(-h_angle, 0.0)) / (2.0 * h_angle),
+           (spin(0.0, h_rate) - spin(0.0, -h_rate)) / (2.0 * h_rate) };
 }
 
 // (S26): joint by joint from the first, along each element's axis only.
@@ -119,7 +165,13 @@ ElementKinematics Chain::elementKinematics(int e, const ShipEndState& ship, cons
   const ShipEndState first = firstJoint(ship, y);
   const Eigen::Vector3d x_f = e == 0 ? first.p_W : Eigen::Vector3d(x.col(e - 1));
   const Eigen::Vector3d v_f = e == 0 ? first.v_W : Eigen::Vector3d(v.col(e - 1));
-  return ElementKinematics::fromJoints(x_f, x.col(e), v_f, v.col(e));
+  ElementKinematics k = ElementKinematics::fromJoints(x_f, x.col(e), v_f, v.col(e));
+  if (layout_.roll && e == layout_.joints - 1)
+  {
+    k.roll = layout_.rollAngle(y);
+    k.roll_rate = layout_.rollRate(y);
+  }
+  return k;
 }
 
 const Seabed* Chain::freeEndPenalty(const ChainModel& model, const ChainGeometry& geometry, double& stiffness,

@@ -107,6 +107,13 @@ void endBodyJacobian(const ChainModel& model, int e, double t, const ElementKine
   // Central differences: the loads have corners (|u_n| where the cross-flow vanishes, as at a steady
   // tow), where one-sided differences taken from the two joints would not cancel for a translation.
   Eigen::Vector3d joint[4] = { k.x_f, k.x_a, k.v_f, k.v_a };
+  auto perturbed = [&]
+  {
+    ElementKinematics kk = ElementKinematics::fromJoints(joint[0], joint[1], joint[2], joint[3]);
+    kk.roll = k.roll;  // a rolling end body's roll held
+    kk.roll_rate = k.roll_rate;
+    return kk;
+  };
   for (int j = 0; j < 12; ++j)
   {
     Eigen::Vector3d& component_of = joint[j / 3];
@@ -115,9 +122,9 @@ void endBodyJacobian(const ChainModel& model, int e, double t, const ElementKine
     // About the cube root of machine epsilon of the scale of what is perturbed: the element's length, the speed.
     const double step = 1e-5 * (position ? std::max(1.0, k.length) : std::max(1.0, std::abs(saved)));
     component_of[j % 3] = saved + step;
-    const Vector6d plus = loads(ElementKinematics::fromJoints(joint[0], joint[1], joint[2], joint[3]));
+    const Vector6d plus = loads(perturbed());
     component_of[j % 3] = saved - step;
-    const Vector6d minus = loads(ElementKinematics::fromJoints(joint[0], joint[1], joint[2], joint[3]));
+    const Vector6d minus = loads(perturbed());
     component_of[j % 3] = saved;
     (position ? out.dh_dx : out.dh_dv).col(j % 6) = (plus - minus) / (2.0 * step);  // a column of K or D
   }

@@ -100,6 +100,7 @@ ChainGeometry ChainModel::initialGeometry() const
   g.nominal_length = segment().length;
   g.first_length = segment().length;
   g.end_length = end_body_->length();
+  g.end_roll = end_body_->rolls();
   g.aft_sections = aft_sections_;
   return g;
 }

@@ -117,7 +117,12 @@ void ChainSolver::elementTerms(const ChainModel& model, const ChainGeometry& geo
   {
     const Eigen::Vector3d x_f = e == 0 ? ship.p_W : Eigen::Vector3d(x.col(e - 1));
     const Eigen::Vector3d v_f = e == 0 ? ship.v_W : Eigen::Vector3d(v.col(e - 1));
-    const ElementKinematics k = ElementKinematics::fromJoints(x_f, x.col(e), v_f, v.col(e));
+    ElementKinematics k = ElementKinematics::fromJoints(x_f, x.col(e), v_f, v.col(e));
+    if (e == geometry.segments && geometry.rollingEnd())
+    {
+      k.roll = end_roll_.x();
+      k.roll_rate = end_roll_.y();
+    }
     const Eigen::Vector3d* bending = nullptr;
     Eigen::Vector3d moments;
     if (model.bends() && e < geometry.segments)

@@ -256,6 +256,12 @@ bool EndBody::command(Actuators&, double, double, double, double) const
   throw std::invalid_argument("command: this end body has no fins or propeller");
 }
 
+Eigen::Vector2d EndBody::rollRates(double, const ElementKinematics&, const Environment&, const Actuators&,
+                                   const Eigen::Vector3d&, const Eigen::Vector3d&) const
+{
+  return Eigen::Vector2d::Zero();
+}
+
 void RigidEndElement::dynamics(double t, const ElementKinematics& k, const Environment& env,
                                const Actuators& /*actuators*/, BodyDynamics& out) const
 {

@@ -36,7 +36,8 @@ void ImplicitStepper::lineariseChain(std::size_t index, const StateLayout& layou
                                      const Eigen::Ref<const Eigen::Matrix3Xd>& v,
                                      const Eigen::Ref<const Eigen::Matrix3Xd>& a,
                                      const std::vector<ElementTerms>& terms, const std::vector<double>& multipliers,
-                                     const Eigen::Matrix3d& first_dF_dx, const Eigen::Matrix3d& first_dF_dv)
+                                     const Eigen::Matrix3d& first_dF_dx, const Eigen::Matrix3d& first_dF_dv,
+                                     const Eigen::Vector2d& end_roll)
 {
   Block& block = blocks_.at(index);
   const size_t n = terms.size();
@@ -49,7 +50,12 @@ void ImplicitStepper::lineariseChain(std::size_t index, const StateLayout& layou
     const int e = static_cast<int>(i);
     const Eigen::Vector3d x_f = e == 0 ? first.p_W : Eigen::Vector3d(x.col(e - 1));
     const Eigen::Vector3d v_f = e == 0 ? first.v_W : Eigen::Vector3d(v.col(e - 1));
-    const ElementKinematics k = ElementKinematics::fromJoints(x_f, x.col(e), v_f, v.col(e));
+    ElementKinematics k = ElementKinematics::fromJoints(x_f, x.col(e), v_f, v.col(e));
+    if (layout.roll && i + 1 == n)  // a rolling end body's loads at its roll (physics.md §5b)
+    {
+      k.roll = end_roll.x();
+      k.roll_rate = end_roll.y();
+    }
     Vector6d a_joints;
     a_joints << (e == 0 ? first.a_W : Eigen::Vector3d(a.col(e - 1))), a.col(e);
     // (S16): the loads' D and K, with the geometric stiffness of the multiplier mu (and, elastic, of T: §8).
@@ -84,7 +90,13 @@ void ImplicitStepper::lineariseChain(std::size_t index, const Chain& chain, cons
     chain.freeEndContactJacobian(model, first, dF_dx, dF_dv);
   }
   lineariseChain(index, L, model, chain.geometry(), data, t, first, L.positions(y), L.velocities(y),
-                 chain.accelerations(), chain.terms(), chain.axialMultipliers(), dF_dx, dF_dv);
+                 chain.accelerations(), chain.terms(), chain.axialMultipliers(), dF_dx, dF_dv, L.rollState(y));
+  if (L.roll)  // (S29): the spin's acceleration's derivatives in the roll angle and the spin
+  {
+    const Eigen::Vector2d d = chain.spinAccelerationDerivatives(model, data, t, ship, y, dydt);
+    blocks_.at(index).roll_d_angle = d.x();
+    blocks_.at(index).roll_d_rate = d.y();
+  }
 }
 
 // (S19): the stage matrix N_XY = M_XY - gamma h D_XY - (gamma h)^2 K_XY per element, with D = dh_dv and
@@ -166,14 +178,22 @@ void ImplicitStepper::solveBlock(Block& block, const std::vector<double>& r, con
     block.sweep.solve(block.stage, tow.v, block.K_v);
   L.velocities(K) = block.K_v;
   L.positions(K) = r_x + gh * block.K_v;  // k_x = r_x + gamma h k_v (docs/solver.md §7)
-  if (!L.winch)
-    return;
   // The winch (§7): [1, -gamma h; -gamma h dL''/dL, 1 - gamma h dL''/dL'] (k_L, k_L') = (r_L, r_L'), with
-  // dL''/dL = winch_d_length_, dL''/dL' = winch_d_rate_; k_L' after eliminating k_L = r_L + gamma h k_L'.
-  const double r_L = L.cableOut(r), r_R = L.payoutRate(r);
-  const double det = (1.0 - gh * winch_d_rate_) - gh * gh * winch_d_length_;
-  L.payoutRate(K) = (r_R + gh * winch_d_length_ * r_L) / det;
-  L.cableOut(K) = r_L + gh * L.payoutRate(K);
+  // dL''/dL = winch_d_length_, dL''/dL' = winch_d_rate_; k_L' after eliminating k_L = r_L + gamma h k_L'. A rolling
+  // end body's (S29) has the same form in (phi, p).
+  auto pair = [gh](double r_value, double r_rate, double d_value, double d_rate)
+  {
+    const double k_rate = (r_rate + gh * d_value * r_value) / ((1.0 - gh * d_rate) - gh * gh * d_value);
+    return Eigen::Vector2d(r_value + gh * k_rate, k_rate);
+  };
+  if (L.winch)
+  {
+    const Eigen::Vector2d k = pair(L.cableOut(r), L.payoutRate(r), winch_d_length_, winch_d_rate_);
+    L.cableOut(K) = k.x();
+    L.payoutRate(K) = k.y();
+  }
+  if (L.roll)
+    L.setRollState(K, pair(L.rollAngle(r), L.rollRate(r), block.roll_d_angle, block.roll_d_rate));
 }
 
 namespace
@@ -383,6 +403,12 @@ double implicitErrorNorm(const NumericsParams& num, const std::vector<Chain>& ch
     {
       sum += ratio(L.cableOut(error), L.cableOut(y), L.cableOut(y_next), num.implicit_position_tol) +
              ratio(L.payoutRate(error), L.payoutRate(y), L.payoutRate(y_next), num.implicit_velocity_tol);
+      count += 2.0;
+    }
+    if (L.roll)  // (S24): the roll angle as the arc it turns at 1 m, the spin as a velocity there
+    {
+      sum += ratio(L.rollAngle(error), L.rollAngle(y), L.rollAngle(y_next), num.implicit_position_tol) +
+             ratio(L.rollRate(error), L.rollRate(y), L.rollRate(y_next), num.implicit_velocity_tol);
       count += 2.0;
     }
     if (L.free)

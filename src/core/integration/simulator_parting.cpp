@@ -45,13 +45,13 @@ void Simulator::part(int element)
   if (element > 0)
     chains.emplace_back(ship_side, StateLayout{ 0, false, chains.front().layout().end(), false });
   const StateLayout& V = chains.front().layout();
-  StateVector y(chains.back().layout().end());
+  StateVector y(chains.back().layout().end());  // zeros: the payout rate, and all that is not set below
   V.positions(y) = L.positions(y_).rightCols(segments + 1);
   V.velocities(y) = L.velocities(y_).rightCols(segments + 1);
   V.cableOut(y) = element == 0 ? L.cableOut(y_) : vehicle.cableLength();
-  V.payoutRate(y) = 0.0;
   V.freePosition(y) = end.p_W;
   V.freeVelocity(y) = end.v_W;
+  V.setRollState(y, L.rollState(y_));
   if (element > 0)
   {
     chains.back().layout().positions(y) = L.positions(y_).leftCols(element);

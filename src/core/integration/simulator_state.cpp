@@ -42,15 +42,15 @@ ChainGeometry laidOut(const ChainModel& model, const WinchParams& winch, ChainGe
 }
 
 // Everything in a saved state that can be checked without the simulator's cable (std::invalid_argument
-// naming the field).
-void validateSavedState(const SimulatorState& s, bool winch_enabled)
+// naming the field); its layout.
+StateLayout validateSavedState(const SimulatorState& s, bool winch_enabled, bool roll)
 {
   requireFinite("t", s.t);
   if (!(s.dt > 0.0) || !std::isfinite(s.dt))
     throw std::invalid_argument("saved state: dt must be a finite step > 0 s, got " + std::to_string(s.dt));
   if (s.segments < 1 || s.segments > 100000)
     throw std::invalid_argument("saved state: segments must be in [1, 100000], got " + std::to_string(s.segments));
-  const StateLayout L{ s.segments + 1 };
+  const StateLayout L{ s.segments + 1, false, 0, true, roll };
   if (s.y.size() != L.size())
     throw std::invalid_argument("saved state: y has " + std::to_string(s.y.size()) + " values; " +
                                 std::to_string(s.segments) + " segments need " + std::to_string(L.size()));
@@ -67,6 +67,7 @@ void validateSavedState(const SimulatorState& s, bool winch_enabled)
   if (!s.slack.empty() && s.slack.size() != static_cast<std::size_t>(s.segments))
     throw std::invalid_argument("saved state: slack has " + std::to_string(s.slack.size()) + " flags for " +
                                 std::to_string(s.segments) + " segments");
+  return L;
 }
 }  // namespace
 
@@ -101,6 +102,7 @@ void Simulator::reset(double t, const ChainState& state)
   data_.winch_command = 0.0;
   L.positions(y_) = state.x;
   L.velocities(y_) = state.v;
+  L.setRollState(y_, Eigen::Vector2d::Zero());  // a rolling vehicle starts level and not spinning
   project(t_);
   refreshOutputs();
   dt_ = std::min(model_->numerics().max_step, 0.01);
@@ -130,10 +132,9 @@ void Simulator::restoreState(const SimulatorState& s)
 {
   // Everything is checked before anything changes (restoreLayout checks first, too); a saved state is of
   // the whole cable.
-  validateSavedState(s, winch_.enabled);
+  const StateLayout L = validateSavedState(s, winch_.enabled, model_->initialGeometry().rollingEnd());
   const std::vector<Chain> before = chains_;
   chains_.assign(1, Chain(model_->initialGeometry(), StateLayout{}));
-  const StateLayout L{ s.segments + 1 };
   try
   {
     restoreLayout(s.segments, L.cableOut(s.y));

@@ -97,7 +97,8 @@ namespace
 // flow and with the aft joint along it (that part keeps its length d).
 void splitFirstSegment(const ShipEndState& ship, ChainGeometry& geometry, std::vector<double>& y)
 {
-  const StateLayout L{ geometry.jointCount() }, next_layout{ L.joints + 1 };
+  const bool roll = geometry.rollingEnd();
+  const StateLayout L{ geometry.jointCount(), false, 0, true, roll }, next_layout{ L.joints + 1, false, 0, true, roll };
   const double d = geometry.nominal_length, first = geometry.first_length;
   const auto x = L.positions(y);
   const auto v = L.velocities(y);
@@ -115,6 +116,7 @@ void splitFirstSegment(const ShipEndState& ship, ChainGeometry& geometry, std::v
   nv.rightCols(L.joints) = v;
   next_layout.cableOut(next) = L.cableOut(y);
   next_layout.payoutRate(next) = L.payoutRate(y);
+  next_layout.setRollState(next, L.rollState(y));
   geometry.segments += 1;
   geometry.first_length = first - d;
   y.swap(next);
@@ -125,12 +127,14 @@ void splitFirstSegment(const ShipEndState& ship, ChainGeometry& geometry, std::v
 // shift of second order in the kink at x_2).
 void mergeFirstSegment(ChainGeometry& geometry, std::vector<double>& y)
 {
-  const StateLayout L{ geometry.jointCount() }, next_layout{ L.joints - 1 };
+  const bool roll = geometry.rollingEnd();
+  const StateLayout L{ geometry.jointCount(), false, 0, true, roll }, next_layout{ L.joints - 1, false, 0, true, roll };
   std::vector<double> next(next_layout.size());
   next_layout.positions(next) = L.positions(y).rightCols(L.joints - 1);
   next_layout.velocities(next) = L.velocities(y).rightCols(L.joints - 1);
   next_layout.cableOut(next) = L.cableOut(y);
   next_layout.payoutRate(next) = L.payoutRate(y);
+  next_layout.setRollState(next, L.rollState(y));
   geometry.segments -= 1;
   geometry.first_length += geometry.nominal_length;
   y.swap(next);

@@ -47,6 +47,7 @@ VehicleOutputs lerp(const VehicleOutputs& a, const VehicleOutputs& b, double w)
   out.depth = lerp(a.depth, b.depth, w);
   out.pitch = lerp(a.pitch, b.pitch, w);
   out.yaw = lerpAngle(a.yaw, b.yaw, w);
+  out.roll = lerpAngle(a.roll, b.roll, w);
   out.rudder = lerp(a.rudder, b.rudder, w);
   out.elevator = lerp(a.elevator, b.elevator, w);
   out.thrust = lerp(a.thrust, b.thrust, w);
@@ -88,6 +89,7 @@ TowSnapshot interpolate(const TowSnapshot& a, const TowSnapshot& b, double t)
   out.attitude = a.attitude.slerp(w, b.attitude);
   out.pitch = lerp(a.pitch, b.pitch, w);
   out.yaw = lerpAngle(a.yaw, b.yaw, w);
+  out.roll = lerpAngle(a.roll, b.roll, w);
   out.depth = lerp(a.depth, b.depth, w);
   out.layback = lerp(a.layback, b.layback, w);
   out.diversion.offset = lerp(a.diversion.offset, b.diversion.offset, w);

@@ -318,6 +318,18 @@ void TowRun::elasticOutputs(TowSnapshot& s)
   max_strain_ = -std::numeric_limits<double>::infinity();
 }
 
+// The published attitude (AttitudeHold near the vertical), its pitch and yaw, then a rolling vehicle's roll
+// about x_b (REP-103: yaw, pitch, roll).
+void TowRun::attitudeOutputs(TowSnapshot& s)
+{
+  const VehicleOutputs& o = s.vehicle;
+  const Eigen::Quaterniond level = attitude_.update(o.q_WB * Eigen::Vector3d::UnitX());
+  s.pitch = pitchOf(level * Eigen::Vector3d::UnitX());
+  s.yaw = yawOf(level * Eigen::Vector3d::UnitY());
+  s.roll = o.roll;
+  s.attitude = o.roll != 0.0 ? Eigen::Quaterniond(level * Eigen::AngleAxisd(o.roll, Eigen::Vector3d::UnitX())) : level;
+}
+
 TowSnapshot TowRun::snapshot()
 {
   if (!started_)
@@ -350,10 +362,7 @@ TowSnapshot TowRun::snapshot()
   tension_ship_range_ = tension_vehicle_range_ = ValueRange();
 
   const VehicleOutputs& o = s.vehicle = vehicleOutputs();
-  s.attitude = attitude_.update(o.q_WB * Eigen::Vector3d::UnitX());
-  const Eigen::Vector3d x_b = s.attitude * Eigen::Vector3d::UnitX(), y_b = s.attitude * Eigen::Vector3d::UnitY();
-  s.pitch = pitchOf(x_b);
-  s.yaw = yawOf(y_b);
+  attitudeOutputs(s);
   s.depth = o.depth;
   const Eigen::Vector3d heading(std::cos(s.ship.heading), std::sin(s.ship.heading), 0.0);
   s.layback = (s.tow_point.p_W - o.p_cg_W).dot(heading);
@@ -535,7 +544,10 @@ RunState relocate(const RunState& state, double t, const ShipEndState& tow_point
     p = tow_point.p_W + R * (p - p0);
     v = tow_point.v_W + R * (v - v0);
   };
-  const StateLayout L{ state.sim.segments + 1 };
+  // A rolling vehicle's two roll states (physics.md §5b) follow the rest; its roll angle is from its zero-roll
+  // frame, which turns with the joints.
+  const StateLayout plain{ state.sim.segments + 1 };
+  const StateLayout L{ plain.joints, false, 0, true, state.sim.y.size() == plain.size() + 2 };
   if (state.sim.y.size() != L.size())
     throw std::invalid_argument("saved state: y does not have the size of its segments");
   auto x = L.positions(s.sim.y);

@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
+#include <functional>
 #include <stdexcept>
 
 #include "tow_sim/core/constants.h"
@@ -29,6 +30,15 @@ Eigen::Vector3d headingHint(const Eigen::Vector3d& v_through_water_W)
   const Eigen::Vector3d horizontal(v_through_water_W.x(), v_through_water_W.y(), 0.0);
   return horizontal.norm() > 1e-6 ? Eigen::Vector3d(horizontal.normalized()) : Eigen::Vector3d::UnitX();
 }
+// The parameter table's inertia entries: a product of inertia sets both of its (symmetric) places.
+std::function<double(const VehicleParams&)> inertiaGetter(int i, int j)
+{
+  return [i, j](const VehicleParams& v) { return v.inertia_B(i, j); };
+}
+std::function<void(VehicleParams&, double)> inertiaSetter(int i, int j)
+{
+  return [i, j](VehicleParams& v, double value) { v.inertia_B(i, j) = v.inertia_B(j, i) = value; };
+}
 }  // namespace
 
 void validate(const VehicleParams& v, const std::string& p)
@@ -41,6 +51,11 @@ void validate(const VehicleParams& v, const std::string& p)
     throw std::invalid_argument(p +
                                 ".inertia must be a finite, symmetric, positive definite 3x3 matrix [kg m^2] "
                                 "about the CG in body axes (xx, yy, zz > 0)");
+  if (v.added_mass_approach == AddedMassApproach::kB && v.roll_added_inertia != 0.0)
+    throw std::invalid_argument(p +
+                                ".roll_added_inertia is Approach A's: with added_mass.approach B the matrix's "
+                                "roll entry (row 4, column 4) is the added roll inertia; got " +
+                                std::to_string(v.roll_added_inertia) + " kg m^2");
   if (v.prolate_spheroid)
     requireInRange(p + ".added_mass.prolate_spheroid.center_from_bail", v.prolate_spheroid->center_from_bail,
                    -v.nose_from_bail, v.tail_from_bail, "[m] (from -nose_from_bail to tail_from_bail)");
@@ -71,6 +86,27 @@ BodyFrame bodyFrame(const Eigen::Vector3d& s, const Eigen::Vector3d& heading_hin
   f.y = y.normalized();
   f.z = f.x.cross(f.y);
   return f;
+}
+
+BodyFrame rolledFrame(const BodyFrame& f, double phi)
+{
+  BodyFrame r = f;
+  const double c = std::cos(phi), sn = std::sin(phi);
+  r.y = c * f.y + sn * f.z;
+  r.z = -sn * f.y + c * f.z;
+  return r;
+}
+
+// (P58): y0 = z x x0 / n (n = |z x x0|, x0 = -s) turns about x0 at dy0/dt . z0 = (z x dx0/dt) . z0 / n.
+double zeroRollFrameSpin(const Eigen::Vector3d& s, const Eigen::Vector3d& s_dot)
+{
+  const Eigen::Vector3d x0 = -s;
+  const Eigen::Vector3d zx = Eigen::Vector3d::UnitZ().cross(x0);
+  const double n = zx.norm();
+  if (n < kVerticalTolerance)
+    return 0.0;
+  const Eigen::Vector3d z0 = x0.cross(zx / n);
+  return Eigen::Vector3d::UnitZ().cross(-s_dot).dot(z0) / n;
 }
 
 Eigen::Quaterniond AttitudeHold::update(const Eigen::Vector3d& x_b_W)
@@ -155,6 +191,8 @@ Vehicle::Loads Vehicle::loads(double t, const ElementKinematics& k, const Enviro
   const Eigen::Vector3d buoyancy = env.water_density * env.gravity * p_.displaced_volume * up;
   force += buoyancy;
   Eigen::Vector3d moment = ((p_.cb_from_bail - p_.cg_from_bail) * s).cross(buoyancy);
+  if (p_.cb_above_cg != 0.0)  // (P57): the CB h_BG above the CG along z_b
+    moment += (p_.cb_above_cg * frame.z).cross(buoyancy);
 
   // Velocity forces over the bail-tail length, at its midpoint (as for a cable element).
   const double wet = env.water_density > 0.0 ? 1.0 : 0.0;  // vacuum: no hydrodynamic loads
@@ -183,22 +221,72 @@ Vehicle::Loads Vehicle::loads(double t, const ElementKinematics& k, const Enviro
                                   p_.vertical_fin_from_bail - p_.cg_from_bail);
   out.elevator_loads = finPairLoads(elevator, FinPlane::kHorizontal, out.elevator, v_hf, frame.x, frame.y, frame.z,
                                     p_.horizontal_fin_from_bail - p_.cg_from_bail);
+  if (p_.rudder_height != 0.0)  // (P57): the rudder's loads act rudder_height above the axis: its heel moment
+    out.rudder_loads.moment_cg_W +=
+        (p_.rudder_height * frame.z).cross(out.rudder_loads.lift_W + out.rudder_loads.drag_W);
   force += out.rudder_loads.lift_W + out.rudder_loads.drag_W + out.elevator_loads.lift_W + out.elevator_loads.drag_W;
   moment += out.rudder_loads.moment_cg_W + out.elevator_loads.moment_cg_W;
+  if (rolls())  // (P57): the roll damping against the spin
+    moment -= wet * p_.roll_damping * k.roll_rate * frame.x;
 
   out.wrench << force, moment;
   return out;
 }
 
+BodyFrame Vehicle::frameAt(const ElementKinematics& k, const Eigen::Vector3d& v_cg_through_water) const
+{
+  const BodyFrame level = bodyFrame(k.s, headingHint(v_cg_through_water));
+  return rolls() ? rolledFrame(level, k.roll) : level;
+}
+
 void Vehicle::dynamics(double t, const ElementKinematics& k, const Environment& env, const Actuators& actuators,
                        BodyDynamics& out) const
+{
+  fullDynamics(t, k, env, actuators, out);
+  if (!rolls())
+    return;
+  // (P59): domega/dt = S (a_a - a_f) + (dp/dt) x_b - p ds/dt. The known part -p ds/dt moves to the wrench; the
+  // moment equation along x_b (which no tension reaches: the bail is on the axis) gives dp/dt, and its
+  // elimination leaves M' = M - M e e^T M / (e^T M e), w' = w - M e (e^T w) / (e^T M e), e = [0; x_b].
+  Vector6d e, bias;
+  e << Eigen::Vector3d::Zero(), -k.s;
+  bias << Eigen::Vector3d::Zero(), -k.roll_rate * k.s_dot;
+  out.wrench -= out.mass * bias;
+  const Vector6d Me = out.mass * e;
+  const double m_ee = e.dot(Me);
+  out.wrench -= Me * (e.dot(out.wrench) / m_ee);
+  out.mass -= Me * Me.transpose() / m_ee;
+}
+
+Eigen::Vector2d Vehicle::rollRates(double t, const ElementKinematics& k, const Environment& env,
+                                   const Actuators& actuators, const Eigen::Vector3d& a_f,
+                                   const Eigen::Vector3d& a_a) const
+{
+  if (!rolls())
+    return Eigen::Vector2d::Zero();
+  BodyDynamics full;
+  fullDynamics(t, k, env, actuators, full);
+  Vector6d e, joints;
+  e << Eigen::Vector3d::Zero(), -k.s;
+  joints << a_f, a_a;
+  Vector6d acceleration = jointMap(k.s, k.length, full.cg_fraction) * joints;  // [a_G; S (a_a - a_f)]
+  acceleration.tail<3>() -= k.roll_rate * k.s_dot;
+  const Vector6d Me = full.mass * e;
+  const double spin_acceleration = (e.dot(full.wrench) - Me.dot(acceleration)) / e.dot(Me);  // (P59)
+  return { k.roll_rate - zeroRollFrameSpin(k.s, k.s_dot), spin_acceleration };               // (P58)
+}
+
+void Vehicle::fullDynamics(double t, const ElementKinematics& k, const Environment& env, const Actuators& actuators,
+                           BodyDynamics& out) const
 {
   const double gamma = p_.cg_from_bail / p_.tail_from_bail;
   const Eigen::Vector3d v_cg = k.velocityAt(gamma);
   const WaveKinematics flow = env.flowAt(k.pointAt(gamma), t);
   const Eigen::Vector3d& current = flow.velocity_W;
-  const BodyFrame frame = bodyFrame(k.s, headingHint(v_cg - current));
+  const BodyFrame frame = frameAt(k, v_cg - current);
   const Eigen::Matrix3d R = frame.rotation();
+  // (P57): rolling, the body also spins at p about x_b.
+  const Eigen::Vector3d omega = rolls() ? Eigen::Vector3d(k.omega + k.roll_rate * frame.x) : k.omega;
   const Eigen::Matrix3d I3 = Eigen::Matrix3d::Identity();
   const Eigen::Matrix3d inertia_W = R * p_.inertia_B * R.transpose();
   out.cg_fraction = gamma;
@@ -208,8 +296,8 @@ void Vehicle::dynamics(double t, const ElementKinematics& k, const Environment& 
 
   const Loads l = loads(t, k, env, actuators, frame);
   out.wrench = l.wrench;
-  // d(I w)/dt = I dw/dt + w x I w with w = s x ds/dt (no roll).
-  out.wrench.tail<3>() -= k.omega.cross(inertia_W * k.omega);
+  // d(I w)/dt = I dw/dt + w x I w with w = s x ds/dt (+ p x_b rolling).
+  out.wrench.tail<3>() -= omega.cross(inertia_W * omega);
 
   const Matrix6d rigid = out.mass;
   if (p_.added_mass_approach == AddedMassApproach::kA)
@@ -222,6 +310,8 @@ void Vehicle::dynamics(double t, const ElementKinematics& k, const Environment& 
     out.mass.topRightCorner<3, 3>() -= e * S;
     out.mass.bottomLeftCorner<3, 3>() += e * S;
     out.mass.bottomRightCorner<3, 3>() -= e * S * S;
+    if (rolls() && env.water_density > 0.0)  // (P57): the added inertia about the axis
+      out.mass.bottomRightCorner<3, 3>() += p_.roll_added_inertia * frame.x * frame.x.transpose();
   }
   else
   {
@@ -232,7 +322,7 @@ void Vehicle::dynamics(double t, const ElementKinematics& k, const Environment& 
     out.mass += T * A * T.transpose();
     if (p_.munk_terms)
     {
-      const Vector6d munk = munkWrench(A, R.transpose() * (v_cg - current), R.transpose() * k.omega);
+      const Vector6d munk = munkWrench(A, R.transpose() * (v_cg - current), R.transpose() * omega);
       out.wrench.head<3>() += R * munk.head<3>();
       out.wrench.tail<3>() += R * munk.tail<3>();
     }
@@ -253,15 +343,17 @@ VehicleOutputs Vehicle::outputs(double t, const ElementKinematics& k, const Envi
   VehicleOutputs o;
   o.p_cg_W = k.pointAt(gamma);
   o.v_cg_W = k.velocityAt(gamma);
-  const BodyFrame frame = bodyFrame(k.s, headingHint(o.v_cg_W - env.flowAt(o.p_cg_W, t).velocity_W));
+  const BodyFrame level = bodyFrame(k.s, headingHint(o.v_cg_W - env.flowAt(o.p_cg_W, t).velocity_W));
+  const BodyFrame frame = rolls() ? rolledFrame(level, k.roll) : level;
   const Eigen::Matrix3d R = frame.rotation();
   o.q_WB = Eigen::Quaterniond(R).normalized();
   o.v_cg_B = R.transpose() * o.v_cg_W;
-  o.omega_W = k.omega;
-  o.omega_B = R.transpose() * k.omega;
+  o.omega_W = rolls() ? Eigen::Vector3d(k.omega + k.roll_rate * frame.x) : k.omega;
+  o.omega_B = R.transpose() * o.omega_W;
+  o.roll = rolls() ? std::remainder(k.roll, 2.0 * kPi) : 0.0;
   o.depth = -o.p_cg_W.z();
-  o.pitch = pitchOf(frame.x);
-  o.yaw = yawOf(frame.y);
+  o.pitch = pitchOf(level.x);
+  o.yaw = yawOf(level.y);
   const Loads l = loads(t, k, env, actuators, frame);
   o.rudder = l.rudder;
   o.elevator = l.elevator;
@@ -282,16 +374,8 @@ const ParamTable<VehicleParams>& vehicleParams()
   using V = VehicleParams;
   const auto along = [](const V& v) { return std::make_pair(-v.nose_from_bail, v.tail_from_bail); };
   const char* along_text = "from -nose_from_bail to tail_from_bail";
-  // Inertia entries: a product of inertia sets both of its (symmetric) places.
-  auto get = [](int i, int j) { return [i, j](const V& v) { return v.inertia_B(i, j); }; };
-  auto set = [](int i, int j)
-  {
-    return [i, j](V& v, double value)
-    {
-      v.inertia_B(i, j) = value;
-      v.inertia_B(j, i) = value;
-    };
-  };
+  auto get = inertiaGetter;
+  auto set = inertiaSetter;
   static const ParamTable<V> table =
       ParamTable<V>()
           .number("tail_from_bail", &V::tail_from_bail, "m", 0.0, 100.0, kOpen,
@@ -329,7 +413,17 @@ const ParamTable<VehicleParams>& vehicleParams()
           .number("thrust_offset_z", &V::thrust_offset_z, "m", -10.0, 10.0, kClosed,
                   "the thrust's line of action above (+z_b) the axis")
           .nest("rudder", &V::rudder, finParams())
-          .nest("elevator", &V::elevator, finParams());
+          .nest("elevator", &V::elevator, finParams())
+          .choice("roll", &V::roll, { { "fixed", VehicleRoll::kFixed }, { "free", VehicleRoll::kFree } },
+                  "fixed: no roll, the report's; free: a roll degree of freedom about the axis (physics.md §5b)")
+          .number("cb_above_cg", &V::cb_above_cg, "m", -10.0, 10.0, kClosed,
+                  "h_BG: the CB above the CG along z_b; ρgV h_BG sin φ restores roll (and pitch)")
+          .number("rudder_height", &V::rudder_height, "m", -10.0, 10.0, kClosed,
+                  "the rudder's centre of pressure above the axis: its lift and drag heel the vehicle")
+          .number("roll_damping", &V::roll_damping, "N m s/rad", 0.0, 1e9, kClosed,
+                  "linear roll damping against the spin (roll: free)")
+          .number("roll_added_inertia", &V::roll_added_inertia, "kg m^2", 0.0, 1e9, kClosed,
+                  "Approach A's added inertia about x_b (roll: free; Approach B: its matrix's)");
   return table;
 }
 

@@ -28,6 +28,7 @@ public:
   {
     geometry_ = geometry;
     layout_.joints = geometry_.jointCount();
+    layout_.roll = geometry_.rollingEnd();
   }
   const StateLayout& layout() const { return layout_; }
   bool freeFirst() const { return layout_.free; }
@@ -57,7 +58,7 @@ public:
 
   // Joints x_1 .. (3 x (joints + 1)), the first joint first.
   Eigen::Matrix3Xd jointPositions(const ShipEndState& ship, const StateVector& y) const;
-  // Kinematics of element e (0 .. joints - 1); std::out_of_range for another e.
+  // Kinematics of element e (0 .. joints - 1), a rolling end body's with its roll; std::out_of_range for another e.
   ElementKinematics elementKinematics(int e, const ShipEndState& ship, const StateVector& y) const;
 
   // At the state of the last refresh(): T_1 .. (force on element lambda at its forward joint) [N], the
@@ -68,12 +69,21 @@ public:
   const std::vector<double>& axialMultipliers() const { return multipliers_; }
   const std::vector<ElementTerms>& terms() const { return solver_.terms(); }
 
+  // A rolling end body's d(dp/dt)/dphi [1/s^2] and d(dp/dt)/dp [1/s] at y, its joints' accelerations dydt held
+  // (the implicit stepper's roll block, docs/solver.md (S29)).
+  Eigen::Vector2d spinAccelerationDerivatives(const ChainModel& model, const ChainData& data, double t,
+                                              const ShipEndState& ship, const StateVector& y,
+                                              const StateVector& dydt) const;
+
   // The derivatives of the seabed's force on a free first joint (freeEndContact) in its position [N/m] and
   // velocity [N s/m], at `end`: zero without a seabed, for the end body alone, or off the bottom.
   void freeEndContactJacobian(const ChainModel& model, const ShipEndState& end, Eigen::Matrix3d& dF_dx,
                               Eigen::Matrix3d& dF_dv) const;
 
 private:
+  // physics.md §5b: a rolling end body's roll angle and spin rates into dydt, from the joints' accelerations a.
+  void rollDerivative(const ChainModel& model, const ChainData& data, double t, const ShipEndState& ship,
+                      const StateVector& y, const Eigen::Ref<const Eigen::Matrix3Xd>& a, StateVector& dydt) const;
   // The seabed's force on a free first joint (the contact of half the first segment's length, as each
   // segment's aft joint carries: ChainModel::forEachContact); zero without a seabed or for the end body alone.
   Eigen::Vector3d freeEndContact(const ChainModel& model, const ChainGeometry& geometry, const ShipEndState& end) const;

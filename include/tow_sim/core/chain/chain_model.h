@@ -47,6 +47,9 @@ struct ChainGeometry
   double end_length = 0.0;          // [m] d_{nu+1}
   // false: no end body, the last segment's aft joint is free (a parted cable's ship side, docs/solver.md §10)
   bool end_body = true;
+  // The end body rolls (physics.md §5b): its roll angle and spin are in the chain's state (StateLayout::roll).
+  bool end_roll = false;
+  bool rollingEnd() const { return end_body && end_roll; }
   // The cable's sections after the first, forward to aft (null: one uniform cable). Their segments are the
   // whole cable's last ones, so the winch, paying out and hauling in the first section, never moves them.
   std::shared_ptr<const std::vector<SegmentRun>> aft_sections;

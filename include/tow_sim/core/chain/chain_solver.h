@@ -99,6 +99,9 @@ public:
                             const Eigen::Vector3d& first_force = Eigen::Vector3d::Zero());
   // The element equations of the last solve (the implicit stepper linearises around them).
   const std::vector<ElementTerms>& terms() const { return terms_; }
+  // A rolling end body's roll angle [rad] and spin [rad/s] for the solves that follow (ElementKinematics::roll,
+  // roll_rate; zero until set). Only a geometry with ChainGeometry::rollingEnd() uses them.
+  void setEndRoll(const Eigen::Vector2d& roll) { end_roll_ = roll; }
 
 private:
   void elementTerms(const ChainModel& model, const ChainGeometry& geometry, const ChainData& data, double t,
@@ -107,6 +110,7 @@ private:
 
   std::vector<ElementTerms> terms_;  // workspace, one entry per element
   ChainSweep sweep_;
+  Eigen::Vector2d end_roll_ = Eigen::Vector2d::Zero();
 };
 
 }  // namespace tow_sim

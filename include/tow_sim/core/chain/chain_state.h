@@ -43,15 +43,16 @@ std::vector<bool> slackFlags(const Eigen::Matrix3Xd& joints, const Eigen::Matrix
 
 // A chain's block of the integrator's state vector: joint positions x_2 .. x_{nu+2} (3 x (nu+1); 3 x nu
 // without an end body), their velocities, then the cable out [m] and the payout rate [m/s] (the chain the
-// winch pays out: the simulator's first), then a free first joint's position and velocity, in that order.
-// Named views instead of index arithmetic.
+// winch pays out: the simulator's first), then a free first joint's position and velocity, then a rolling end
+// body's roll angle [rad] and spin [rad/s] (physics.md §5b), in that order. Named views instead of index arithmetic.
 struct StateLayout
 {
   int joints = 0;          // nu + 1 (nu without an end body)
   bool free = false;       // the first joint is free (a parted end): its position and velocity follow (6 more)
   std::size_t offset = 0;  // where the block starts in the state vector
   bool winch = true;       // the cable out and the payout rate follow the velocities (2 more)
-  std::size_t size() const { return winchOffset() + (winch ? 2 : 0) + (free ? 6 : 0) - offset; }
+  bool roll = false;       // the end body rolls: its roll angle and spin come last (2 more)
+  std::size_t size() const { return rollOffset() + (roll ? 2 : 0) - offset; }
   std::size_t end() const { return offset + size(); }  // where the next block starts
   Eigen::Map<Eigen::Matrix3Xd> positions(std::vector<double>& y) const { return { y.data() + offset, 3, joints }; }
   Eigen::Map<const Eigen::Matrix3Xd> positions(const std::vector<double>& y) const
@@ -87,9 +88,25 @@ struct StateLayout
     return Eigen::Map<const Eigen::Vector3d>(y.data() + freeOffset() + 3);
   }
 
+  double& rollAngle(std::vector<double>& y) const { return y[rollOffset()]; }
+  double rollAngle(const std::vector<double>& y) const { return y[rollOffset()]; }
+  double& rollRate(std::vector<double>& y) const { return y[rollOffset() + 1]; }
+  double rollRate(const std::vector<double>& y) const { return y[rollOffset() + 1]; }
+  // The roll angle and spin of y (zero without roll), and setting them (nothing without roll).
+  Eigen::Vector2d rollState(const std::vector<double>& y) const
+  {
+    return roll ? Eigen::Vector2d(y[rollOffset()], y[rollOffset() + 1]) : Eigen::Vector2d::Zero();
+  }
+  void setRollState(std::vector<double>& y, const Eigen::Vector2d& state) const
+  {
+    if (roll)
+      Eigen::Map<Eigen::Vector2d>(y.data() + rollOffset()) = state;
+  }
+
 private:
   std::size_t winchOffset() const { return offset + 6 * static_cast<std::size_t>(joints); }
   std::size_t freeOffset() const { return winchOffset() + (winch ? 2 : 0); }
+  std::size_t rollOffset() const { return freeOffset() + (free ? 6 : 0); }
 };
 
 // Raises every joint of `state` that lies below the bottom onto it (a start from a shape computed

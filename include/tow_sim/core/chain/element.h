@@ -23,6 +23,9 @@ struct ElementKinematics
   double length = 0.0;                 // [m] |x_a - x_f| (equals d_lambda up to the length error)
   Eigen::Vector3d s_dot;               // [1/s] ds/dt
   Eigen::Vector3d omega;               // [rad/s] s x ds/dt (no roll)
+  // A rolling end body's roll (physics.md §5b): the angle phi [rad] from its zero-roll frame (P1) about x_b = -s
+  // and its spin p = omega_B . x_b [rad/s], which adds p x_b to omega. Zero for every other element.
+  double roll = 0.0, roll_rate = 0.0;
 
   static ElementKinematics fromJoints(const Eigen::Vector3d& x_f, const Eigen::Vector3d& x_a,
                                       const Eigen::Vector3d& v_f, const Eigen::Vector3d& v_a);
@@ -164,6 +167,13 @@ public:
   // Commands the actuators from time t [s] on; values beyond the limits saturate. Returns true when
   // something saturated. Throws std::invalid_argument for a non-finite value or a body without actuators.
   virtual bool command(Actuators& actuators, double t, double rudder, double elevator, double thrust) const;
+  // A body that rolls (physics.md §5b) has two more states, its roll angle and spin (ElementKinematics::roll,
+  // roll_rate); dynamics() then gives its equations with the spin's acceleration eliminated, and rollRates()
+  // the angle's and the spin's rates once the joints' accelerations a_f (bail) and a_a (tail point) are known.
+  virtual bool rolls() const { return false; }
+  virtual Eigen::Vector2d rollRates(double t, const ElementKinematics& k, const Environment& env,
+                                    const Actuators& actuators, const Eigen::Vector3d& a_f,
+                                    const Eigen::Vector3d& a_a) const;
 };
 
 // Axisymmetric rigid end body: weight at the CG, buoyancy at the CB, cable-like velocity forces and

@@ -83,7 +83,8 @@ public:
                       const Eigen::Ref<const Eigen::Matrix3Xd>& a, const std::vector<ElementTerms>& terms,
                       const std::vector<double>& multipliers,
                       const Eigen::Matrix3d& first_dF_dx = Eigen::Matrix3d::Zero(),
-                      const Eigen::Matrix3d& first_dF_dv = Eigen::Matrix3d::Zero());
+                      const Eigen::Matrix3d& first_dF_dv = Eigen::Matrix3d::Zero(),
+                      const Eigen::Vector2d& end_roll = Eigen::Vector2d::Zero());
   // The same for the simulator's chain `index` at its state in y (its accelerations dydt, its solve's terms as
   // last refreshed), the ship's tow point `ship` at t.
   void lineariseChain(std::size_t index, const Chain& chain, const ChainModel& model, const ChainData& data, double t,
@@ -118,6 +119,8 @@ private:
     std::vector<ElementTerms> stage;         // N_XY, and per stage w~_X (in h_f, h_a) and Psi~ (in c) (S19)
     ChainSweep sweep;
     Eigen::Matrix3Xd K_v;  // the stage's k_v at the block's joints (S18)
+    // A rolling end body's dp/dphi [1/s^2] and dp/dp [1/s] of its spin's acceleration (solver.md (S29)).
+    double roll_d_angle = 0.0, roll_d_rate = 0.0;
   };
   void solveBlock(Block& block, const std::vector<double>& r, const TowPointRates& tow, std::vector<double>& K);
   void stagesWorld(const RosenbrockTableau& rw, double t, double h, const std::vector<double>& y,

@@ -82,9 +82,10 @@ struct TowSnapshot
   // largest segment strain over the steps since the previous snapshot and at this one.
   long snap_count = 0;
   double max_strain = 0.0;  // [-]
-  VehicleOutputs vehicle;   // at the CG, in the dynamics' zero-roll frame; fin angles and loads
+  VehicleOutputs vehicle;   // at the CG, in the dynamics' body frame (zero roll unless it rolls); fins' angles, loads
   Eigen::Quaterniond attitude = Eigen::Quaterniond::Identity();  // as published (AttitudeHold near the vertical)
   double pitch = 0.0, yaw = 0.0;  // [rad] REP-103 of `attitude`: pitch positive nose down, yaw from +x
+  double roll = 0.0;              // [rad] REP-103, positive starboard down: 0 unless vehicle.roll is free
   double depth = 0.0;             // [m] of the CG
   double layback = 0.0;           // [m] of the CG behind the tow point, along the ship's heading
   Diversion diversion;            // of the CG from the ship's track, positive to port, and its rate
@@ -217,6 +218,7 @@ private:
   VehicleOutputs vehicleOutputs() const;
   void elasticOutputs(TowSnapshot& s);               // slack flags, snap count and strain of an elastic cable
   void sectionAndBodyOutputs(TowSnapshot& s) const;  // each segment's section, each point body's place and pulls
+  void attitudeOutputs(TowSnapshot& s);              // attitude, pitch, yaw, roll from s.vehicle
 
   SimulationConfig config_;
   std::shared_ptr<const Vehicle> vehicle_;

@@ -26,6 +26,13 @@ enum class AddedMassApproach
   kB   // report Approach B: Kirchhoff, a symmetric 6x6 matrix about the CG in body axes
 };
 
+// Whether the vehicle rolls (physics.md §5b).
+enum class VehicleRoll
+{
+  kFixed,  // the report's: no roll, a roll-stabilised body (or a swivel at the bail)
+  kFree    // a roll degree of freedom about the axis: restoring, damping and heel moments act on it
+};
+
 struct ProlateSpheroid
 {
   double length = 2.0;            // [m] 2a, > 0
@@ -63,6 +70,12 @@ struct VehicleParams
   // Fins: vertical pair (rudder, alpha) and horizontal pair (elevator, beta).
   FinPairParams rudder;
   FinPairParams elevator;
+  // Roll (physics.md §5b). cb_above_cg and rudder_height act in both modes (0 by default: the report's body).
+  VehicleRoll roll = VehicleRoll::kFixed;
+  double cb_above_cg = 0.0;         // [m] h_BG: the CB above the CG along z_b, [-10, 10]
+  double rudder_height = 0.0;       // [m] the rudder's centre of pressure above the axis (+z_b), [-10, 10]
+  double roll_damping = 0.0;        // [N m s/rad] linear, against the spin, [0, 1e9]
+  double roll_added_inertia = 0.0;  // [kg m^2] Approach A's added inertia about x_b, [0, 1e9]
 };
 // The parameter table of the vehicle (param_table.h): every key with its unit, range, default and meaning.
 const ParamTable<VehicleParams>& vehicleParams();
@@ -79,6 +92,11 @@ struct BodyFrame
   Eigen::Matrix3d rotation() const;  // R_WB = [x_b y_b z_b]
 };
 BodyFrame bodyFrame(const Eigen::Vector3d& s, const Eigen::Vector3d& heading_hint = Eigen::Vector3d::UnitX());
+// The frame f turned by the roll phi [rad] about its x_b (positive: starboard side down), physics.md (P57).
+BodyFrame rolledFrame(const BodyFrame& f, double phi);
+// The zero-roll frame's (P1) own turning rate about x_b [rad/s] for the axis s and its rate s_dot: the roll
+// angle from that frame changes at the spin less this, (P58). Zero within 1e-6 rad of the vertical.
+double zeroRollFrameSpin(const Eigen::Vector3d& s, const Eigen::Vector3d& s_dot);
 
 // The attitude to publish. The upright zero-roll frame has no heading when the axis is vertical, and
 // near it the heading follows the tiny horizontal part of the axis, so a vehicle hanging almost still
@@ -111,9 +129,10 @@ private:
 struct VehicleOutputs
 {
   Eigen::Vector3d p_cg_W;               // [m] CG position, world
-  Eigen::Quaterniond q_WB;              // body (FLU, zero roll) to world
+  Eigen::Quaterniond q_WB;              // body (FLU, zero roll unless the vehicle rolls) to world
   Eigen::Vector3d v_cg_W, v_cg_B;       // [m/s] CG velocity over ground, world and body axes
-  Eigen::Vector3d omega_W, omega_B;     // [rad/s] angular velocity s x ds/dt, world and body axes
+  Eigen::Vector3d omega_W, omega_B;     // [rad/s] angular velocity s x ds/dt (+ p x_b rolling), world and body axes
+  double roll = 0.0;                    // [rad] from the zero-roll frame, positive starboard down (0: roll fixed)
   double depth = 0.0;                   // [m] of the CG, -z
   double pitch = 0.0;                   // [rad] REP-103 Euler pitch: rotation about y_b, positive nose DOWN
   double yaw = 0.0;                     // [rad] heading of x_b from world x, counter-clockwise (ENU)
@@ -132,8 +151,13 @@ public:
   double length() const override { return p_.tail_from_bail; }
   // The hull's ends touch the seabed: the nose and the tail point.
   std::vector<double> contactFractions() const override { return { -p_.nose_from_bail / p_.tail_from_bail, 1.0 }; }
+  // Rolling, the equations with the spin's acceleration eliminated (physics.md (P59)).
   void dynamics(double t, const ElementKinematics& k, const Environment& env, const Actuators& actuators,
                 BodyDynamics& out) const override;
+  bool rolls() const override { return p_.roll == VehicleRoll::kFree; }
+  // (P58)-(P59): the roll angle's and the spin's rates; zero when the roll is fixed.
+  Eigen::Vector2d rollRates(double t, const ElementKinematics& k, const Environment& env, const Actuators& actuators,
+                            const Eigen::Vector3d& a_f, const Eigen::Vector3d& a_a) const override;
 
   // Fins centred on servos with this vehicle's limits, no thrust, at time t [s].
   Actuators restingActuators(double t) const override;
@@ -150,6 +174,11 @@ private:
   struct Loads;
   Loads loads(double t, const ElementKinematics& k, const Environment& env, const Actuators& actuators,
               const BodyFrame& frame) const;
+  // Newton-Euler about the CG at the body's roll, the spin's acceleration not yet eliminated.
+  void fullDynamics(double t, const ElementKinematics& k, const Environment& env, const Actuators& actuators,
+                    BodyDynamics& out) const;
+  // The body frame at k's axis and roll; the flow's heading hint from the CG's velocity through the water.
+  BodyFrame frameAt(const ElementKinematics& k, const Eigen::Vector3d& v_cg_through_water) const;
 
   VehicleParams p_;
   double smoothing_speed_;
