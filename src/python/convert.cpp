@@ -116,21 +116,23 @@ std::vector<CommandEvent> commandList(const py::handle& commands)
   {
     const std::string name = "commands[" + std::to_string(out.size()) + "]";
     if (!py::isinstance<py::dict>(item))
-      throw std::invalid_argument(name + ": a dict {t, rudder, elevator, thrust, payout_rate}");
+      throw std::invalid_argument(name + ": a dict {t, rudder, elevator, thrust, payout_rate, differential}");
     const py::dict d = item.cast<py::dict>();
     CommandEvent e;
     for (const auto& kv : d)
     {
       const std::string key = py::str(kv.first).cast<std::string>();
       const double v = number(kv.second, name + "." + key);
-      double* field = key == "t"             ? &e.t
-                      : key == "rudder"      ? &e.rudder
-                      : key == "elevator"    ? &e.elevator
-                      : key == "thrust"      ? &e.thrust
-                      : key == "payout_rate" ? &e.payout_rate
-                                             : nullptr;
+      double* field = key == "t"              ? &e.t
+                      : key == "rudder"       ? &e.rudder
+                      : key == "elevator"     ? &e.elevator
+                      : key == "thrust"       ? &e.thrust
+                      : key == "payout_rate"  ? &e.payout_rate
+                      : key == "differential" ? &e.differential
+                                              : nullptr;
       if (!field)
-        throw std::invalid_argument(name + "." + key + ": unknown key (t, rudder, elevator, thrust, payout_rate)");
+        throw std::invalid_argument(name + "." + key +
+                                    ": unknown key (t, rudder, elevator, thrust, payout_rate, differential)");
       *field = v;
     }
     out.push_back(e);

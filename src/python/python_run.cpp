@@ -184,7 +184,8 @@ void bindRun(py::module_& m)
            "tow_point"_a = py::make_tuple(-20.0, 0.0, 0.0), "commands"_a = py::none(), "ship"_a = py::none(),
            "The configuration behind a ship on a straight course (speed [m/s], heading [rad] from +x, for duration "
            "[s], the tow point [m] in the ship frame), or behind the tow point given by `ship` = {t, tow_point, "
-           "velocity, heading} arrays (world); commands: a list of {t, rudder, elevator, thrust, payout_rate}.")
+           "velocity, heading} arrays (world); commands: a list of {t, rudder, elevator, thrust, payout_rate, "
+           "differential}.")
       .def("advance_to", &PythonRun::advanceTo, "t"_a, py::call_guard<py::gil_scoped_release>(),
            "Integrates to t [s] (RuntimeError on divergence: the last good state stays).")
       .def("snapshot", &PythonRun::snapshot, "Every output now (the length-error maximum starts again).")
@@ -192,10 +193,11 @@ void bindRun(py::module_& m)
            "Advances to `until` [s], returning timeseries.csv's columns at every `every` [s] (dict of arrays).")
       .def(
           "set_fins",
-          [](PythonRun& r, double rudder, double elevator, double thrust)
-          { return r.tow().command(rudder, elevator, thrust); },
-          "rudder"_a = 0.0, "elevator"_a = 0.0, "thrust"_a = 0.0,
-          "Fin angles [rad] and thrust [N] from now on; returns True when a value saturated.")
+          [](PythonRun& r, double rudder, double elevator, double thrust, double differential)
+          { return r.tow().command(rudder, elevator, thrust, differential); },
+          "rudder"_a = 0.0, "elevator"_a = 0.0, "thrust"_a = 0.0, "differential"_a = 0.0,
+          "Fin angles [rad] and thrust [N] from now on, and the elevator's differential [rad] (starboard fin +, "
+          "port fin -; rolls a vehicle with vehicle.roll: free); returns True when a value saturated.")
       .def(
           "set_winch", [](PythonRun& r, double rate) { return r.tow().setWinchCommand(rate); }, "rate"_a,
           "The winch's payout rate [m/s] (positive pays out; needs winch.enabled); returns the rate accepted.")

@@ -235,17 +235,17 @@ void TowSimNode::onOdometry(const nav_msgs::Odometry::ConstPtr& msg)
 void TowSimNode::onFinCommand(const tow_sim::FinCommand::ConstPtr& msg)
 {
   bool saturated = false;
-  if (live_.finCommand(msg->rudder, msg->elevator, msg->thrust, &saturated))
+  if (live_.finCommand(msg->rudder, msg->elevator, msg->thrust, &saturated, msg->differential))
   {
     if (saturated)
       ROS_WARN_THROTTLE(2.0,
-                        "tow_sim: fins/command saturated: |rudder| <= %.3f rad, |elevator| <= %.3f rad, |thrust| "
-                        "<= %.0f N",
+                        "tow_sim: fins/command saturated: |rudder| <= %.3f rad, |elevator| and |differential| <= "
+                        "%.3f rad, |thrust| <= %.0f N",
                         config_.vehicle.rudder.max_deflection, config_.vehicle.elevator.max_deflection,
                         config_.vehicle.max_thrust);
   }
   else if (live_.started())
-    ROS_WARN_THROTTLE(2.0, "tow_sim: rejected fins/command: rudder, elevator and thrust must be finite");
+    ROS_WARN_THROTTLE(2.0, "tow_sim: rejected fins/command: rudder, elevator, thrust and differential must be finite");
   else  // the first odometry lays the cable out with the fins centred
     ROS_WARN_THROTTLE(2.0, "tow_sim: fins/command ignored: no ship odometry yet");
 }

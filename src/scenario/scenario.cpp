@@ -77,7 +77,10 @@ const ParamTable<CommandEvent>& commandParams()
           .number("elevator", &C::elevator, "rad", -kHalfPi, kHalfPi, kClosed, "likewise")
           .number("thrust", &C::thrust, "N", -1e6, 1e6, kClosed, "likewise")
           .number("payout_rate", &C::payout_rate, "m/s", -20.0, 20.0, kClosed,
-                  "winch (needs winch.enabled; saturated at winch.max_rate); omitted: 0");
+                  "winch (needs winch.enabled; saturated at winch.max_rate); omitted: 0")
+          .number("differential", &C::differential, "rad", -kHalfPi, kHalfPi, kClosed,
+                  "the elevator's differential, starboard fin +, port fin −: rolls a vehicle with roll: free to "
+                  "port (saturated like the elevator); omitted: 0");
   return table;
 }
 

@@ -76,10 +76,10 @@ const std::string& outputRoot()
 
 // Every scenario in scenarios/ (the bathymetry files there are grids, not scenarios).
 const char* const kShippedScenarios[] = {
-  "report_elevator_step", "turn_180",     "speed_change",    "zigzag",
-  "winch_payout",         "seabed_shoal", "sheared_current", "autopilot_depth_turn",
-  "autopilot_terrain",    "head_seas",    "autopilot_winch", "heave_snap",
-  "two_part_tow"
+  "report_elevator_step", "turn_180",       "speed_change",    "zigzag",
+  "winch_payout",         "seabed_shoal",   "sheared_current", "autopilot_depth_turn",
+  "autopilot_terrain",    "head_seas",      "autopilot_winch", "heave_snap",
+  "two_part_tow",         "rolling_towfish"
 };
 
 // Runs a shipped scenario once per test process (whichever test asks first), in this process through the

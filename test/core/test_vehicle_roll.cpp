@@ -162,6 +162,34 @@ TEST(VehicleRoll, RudderHeelIsBalancedByTheBuoyancyMoment)
   }
 }
 
+// The elevator's differential delta_a (starboard fin +, port fin -) in the fins' linear range gives the roll moment
+// -b C_L |v_p|^2 delta_a about x_b (each fin half the pair's lift constant C_L, b = elevator_span): the vehicle
+// heels to port until rho g V h_BG sin(phi) cos(theta) balances it. |v_p| here: the vehicle's speed through the
+// (still) water; the inflow angle's cosine (about 6 degrees) is the estimate's error.
+TEST(VehicleRoll, TheDifferentialElevatorRollsItToPort)
+{
+  VehicleParams p = rollingVehicle();
+  p.roll_damping = 20.0;
+  for (StepperType stepper : { StepperType::kDopri5, StepperType::kImplicit })
+  {
+    Tow tow = steadyTow(p, stepper);
+    EXPECT_FALSE(tow.sim->command(0.0, 0.0, 0.0, 0.05));
+    tow.sim->advanceTo(120.0);
+    const VehicleOutputs o = tow.out();
+    const Environment& env = tow.sim->data().environment;
+    const double moment = -p.elevator_span * p.elevator.lift_constant * o.v_cg_W.squaredNorm() * 0.05;
+    const double buoyancy_arm = env.water_density * env.gravity * p.displaced_volume * p.cb_above_cg;
+    const double expected = std::asin(moment / (buoyancy_arm * std::cos(o.pitch)));
+    std::printf("differential 0.05 rad: heel %.4f deg, hand estimate %.4f deg\n", o.roll * 180.0 / kPi,
+                expected * 180.0 / kPi);
+    EXPECT_DOUBLE_EQ(o.differential, 0.05);
+    EXPECT_LT(o.roll, 0.0);
+    EXPECT_NEAR(o.roll, expected, 0.015 * std::abs(expected));
+  }
+  // A differential that is not a number is refused.
+  EXPECT_THROW(steadyTow(p, StepperType::kDopri5).sim->command(0.0, 0.0, 0.0, NAN), std::invalid_argument);
+}
+
 // With nothing to roll it (no restoring, heel or damping moment; an axisymmetric inertia), the vehicle keeps
 // its spin p = 0 through a turn while its zero-roll frame turns under it: by Euler's angles (yaw psi, then pitch
 // theta nose down, then roll phi) p = dphi/dt - dpsi/dt sin(theta), so phi gains the integral of dpsi sin(theta)

@@ -82,6 +82,18 @@ def test_a_run_continued_in_pieces_gives_the_same_rows_once_each():
     assert s.depth == pytest.approx(whole["depth"][-1], rel=1e-12)
 
 
+def test_set_fins_differential_rolls_a_rolling_vehicle_to_port():
+    # The same as the scenario's differential command: a roll command that reaches the vehicle, refused as NaN.
+    sc = tow_sim.load_scenario(os.path.join(SOURCE, "scenarios", "rolling_towfish.yaml"))
+    run = tow_sim.Run(sc)
+    run.advance_to(10.0)
+    assert run.set_fins(differential=0.05) is False
+    rolled = run.run(until=40.0, every=1.0)
+    assert rolled["vehicle_roll"][-1] < -0.05  # port side down, several degrees
+    with pytest.raises(ValueError, match="differential"):
+        run.set_fins(differential=float("nan"))
+
+
 def test_the_steady_tow_is_tow_sim_charts(tmp_path):
     subprocess.run(
         [os.path.join(BIN, "tow_sim_chart"), "--config", CONFIG, "--speeds", "1:3:1", "--cable-out", "300:500:200",

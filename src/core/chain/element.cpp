@@ -231,16 +231,21 @@ void Depressor::dynamics(double t, const ElementKinematics& k, const Environment
 }
 
 HeldServos::HeldServos(Actuators& actuators, double t_held)
-    : actuators_(actuators), rudder_(actuators.rudder.state()), elevator_(actuators.elevator.state())
+    : actuators_(actuators),
+      rudder_(actuators.rudder.state()),
+      elevator_(actuators.elevator.state()),
+      differential_(actuators.differential.state())
 {
   actuators.rudder.reset(t_held, actuators.rudder.angleAt(t_held));
   actuators.elevator.reset(t_held, actuators.elevator.angleAt(t_held));
+  actuators.differential.reset(t_held, actuators.differential.angleAt(t_held));
 }
 
 HeldServos::~HeldServos()
 {
   actuators_.rudder.restore(rudder_);
   actuators_.elevator.restore(elevator_);
+  actuators_.differential.restore(differential_);
 }
 
 Actuators EndBody::restingActuators(double t) const
@@ -248,12 +253,18 @@ Actuators EndBody::restingActuators(double t) const
   Actuators a;
   a.rudder.reset(t, 0.0);
   a.elevator.reset(t, 0.0);
+  a.differential.reset(t, 0.0);
   return a;
 }
 
 bool EndBody::command(Actuators&, double, double, double, double) const
 {
   throw std::invalid_argument("command: this end body has no fins or propeller");
+}
+
+bool EndBody::commandDifferential(Actuators&, double, double) const
+{
+  throw std::invalid_argument("command: this end body has no fins");
 }
 
 Eigen::Vector2d EndBody::rollRates(double, const ElementKinematics&, const Environment&, const Actuators&,

@@ -68,15 +68,6 @@ double Simulator::setWinchCommand(double payout_rate)
   return data_.winch_command;
 }
 
-double Simulator::cableLength() const
-{
-  return layout().cableOut(y_);
-}
-double Simulator::payoutRate() const
-{
-  return layout().payoutRate(y_);
-}
-
 ChainGeometry Simulator::geometryOf(const StateVector& y) const
 {
   if (!winch_.enabled || parted())  // parted: the winch has nothing to pay out

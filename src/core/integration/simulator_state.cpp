@@ -58,6 +58,7 @@ StateLayout validateSavedState(const SimulatorState& s, bool winch_enabled, bool
     requireFinite("y[" + std::to_string(i) + "]", s.y[i]);
   requireFinite("rudder", s.rudder);
   requireFinite("elevator", s.elevator);
+  requireFinite("differential", s.differential);
   requireFinite("thrust", s.thrust);
   requireFinite("winch_command", s.winch_command);
   if (!winch_enabled && (s.winch_command != 0.0 || L.payoutRate(s.y) != 0.0))
@@ -122,6 +123,7 @@ SimulatorState Simulator::saveState() const
   s.y = y_;
   s.rudder = data_.actuators.rudder.state();
   s.elevator = data_.actuators.elevator.state();
+  s.differential = data_.actuators.differential.state();
   s.thrust = data_.actuators.thrust;
   s.winch_command = data_.winch_command;
   s.slack = slack_;
@@ -155,6 +157,7 @@ void Simulator::restoreState(const SimulatorState& s)
   dydt_.assign(y_.size(), 0.0);
   data_.actuators.rudder.restore(s.rudder);
   data_.actuators.elevator.restore(s.elevator);
+  data_.actuators.differential.restore(s.differential);
   data_.actuators.thrust = s.thrust;
   data_.winch_command = s.winch_command;
   slack_ = s.slack;

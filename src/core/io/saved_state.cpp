@@ -247,6 +247,7 @@ std::string runStateText(const RunState& s)
   w.put("y", sim.y);
   w.put("rudder", sim.rudder);
   w.put("elevator", sim.elevator);
+  w.put("differential", sim.differential);
   w.put("thrust", sim.thrust);
   w.put("winch_command", sim.winch_command);
   w.put("slack", std::vector<double>(sim.slack.begin(), sim.slack.end()));
@@ -306,9 +307,15 @@ RunState parseRunState(const std::string& text, const std::string& source)
   s.reached = f.number("reached");
   sim.dt = f.number("dt");
   sim.segments = static_cast<int>(f.integer("segments", 1, 100000));
-  sim.y = f.take("y", 6 * static_cast<std::size_t>(sim.segments + 1) + 2);
+  const std::size_t plain = 6 * static_cast<std::size_t>(sim.segments + 1) + 2;
+  sim.y = f.take("y", 0, true);
+  if (sim.y.size() != plain && sim.y.size() != plain + 2)  // + a rolling vehicle's roll angle and spin
+    f.fail("y has " + std::to_string(sim.y.size()) + " values, expected " + std::to_string(plain) + " (" +
+           std::to_string(plain + 2) + " with vehicle.roll: free)");
   sim.rudder = f.servo("rudder");
   sim.elevator = f.servo("elevator");
+  if (f.has("differential"))  // states saved before the differential elevator have none
+    sim.differential = f.servo("differential");
   sim.thrust = f.number("thrust");
   sim.winch_command = f.number("winch_command");
   for (double v : f.take("slack", 0, true))

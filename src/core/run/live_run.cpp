@@ -329,17 +329,17 @@ LiveStatus LiveRun::status() const
   return counters_.lag > 1.0 ? LiveStatus::kLagging : LiveStatus::kRunning;
 }
 
-bool LiveRun::finCommand(double rudder, double elevator, double thrust, bool* saturated)
+bool LiveRun::finCommand(double rudder, double elevator, double thrust, bool* saturated, double differential)
 {
   *saturated = false;
-  if (!std::isfinite(rudder) || !std::isfinite(elevator) || !std::isfinite(thrust))
+  if (!std::isfinite(rudder) || !std::isfinite(elevator) || !std::isfinite(thrust) || !std::isfinite(differential))
   {
     ++counters_.rejected_messages;
     return false;
   }
   if (!started_)  // the first odometry lays the cable out with the fins centred
     return false;
-  *saturated = run_.command(rudder, elevator, thrust);
+  *saturated = run_.command(rudder, elevator, thrust, differential);
   return true;
 }
 

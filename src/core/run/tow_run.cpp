@@ -169,7 +169,7 @@ std::string TowRun::start(double t)
   sim_.rejoin();  // a parted cable is whole again: a restart lays the configured cable out
   sim_.resetActuators(t);
   if (due && !autopilot_)  // the thrust shapes the equilibrium
-    sim_.commandAt(t, due->rudder, due->elevator, due->thrust);
+    sim_.commandAt(t, due->rudder, due->elevator, due->thrust, due->differential);
   // The autopilot starts afresh: its setpoints due by t given, its ticks from t on.
   if (autopilot_loop_.enabled)
   {
@@ -263,7 +263,7 @@ StepReport TowRun::advanceTo(double t)
     {
       const CommandEvent& c = commands_[next_command_++];
       if (!autopilot_)
-        sim_.command(c.rudder, c.elevator, c.thrust);
+        sim_.command(c.rudder, c.elevator, c.thrust, c.differential);
       const bool autopilot_winch =
           autopilot_ && autopilot_loop_.params.actuator != DepthAutopilotParams::Actuator::kElevator;
       if (config_.winch.enabled && !autopilot_winch && !sim_.parted())  // else the autopilot drives the winch
@@ -563,6 +563,7 @@ RunState relocate(const RunState& state, double t, const ShipEndState& tow_point
   s.reached += dt;
   s.sim.rudder.t0 += dt;
   s.sim.elevator.t0 += dt;
+  s.sim.differential.t0 += dt;
   s.tow_point = tow_point;
   s.heading = heading;
   if (std::isfinite(s.attitude_heading))  // a held heading turns with the ship

@@ -30,6 +30,29 @@ Eigen::Vector3d headingHint(const Eigen::Vector3d& v_through_water_W)
   const Eigen::Vector3d horizontal(v_through_water_W.x(), v_through_water_W.y(), 0.0);
   return horizontal.norm() > 1e-6 ? Eigen::Vector3d(horizontal.normalized()) : Eigen::Vector3d::UnitX();
 }
+// (P57a): the elevator as its two fins, each with half the pair's constants, the starboard one (span b toward
+// -y_b) at elevator + differential, the port one (+y_b) at elevator - differential; their sum as the pair's
+// loads, the moment with each fin's arm across the axis.
+FinPairLoads differentialElevatorLoads(FinPairParams fin, double elevator, double differential,
+                                       const Eigen::Vector3d& v_W, const BodyFrame& f, double arm, double span)
+{
+  fin.lift_constant *= 0.5;
+  fin.drag_constant *= 0.5;
+  const FinPairLoads starboard =
+      finPairLoads(fin, FinPlane::kHorizontal, elevator + differential, v_W, f.x, f.y, f.z, arm);
+  const FinPairLoads port = finPairLoads(fin, FinPlane::kHorizontal, elevator - differential, v_W, f.x, f.y, f.z, arm);
+  FinPairLoads pair = starboard;
+  pair.angle = elevator;
+  pair.angle_of_attack = 0.5 * (starboard.angle_of_attack + port.angle_of_attack);
+  pair.lift_W = starboard.lift_W + port.lift_W;
+  pair.drag_W = starboard.drag_W + port.drag_W;
+  pair.moment_cg_W = starboard.moment_cg_W + port.moment_cg_W +
+                     (-span * f.y).cross(starboard.lift_W + starboard.drag_W) +
+                     (span * f.y).cross(port.lift_W + port.drag_W);
+  pair.hinge_moment = starboard.hinge_moment + port.hinge_moment;
+  return pair;
+}
+
 // The parameter table's inertia entries: a product of inertia sets both of its (symmetric) places.
 std::function<double(const VehicleParams&)> inertiaGetter(int i, int j)
 {
@@ -137,7 +160,7 @@ Eigen::Quaterniond AttitudeHold::update(const Eigen::Vector3d& x_b_W)
 struct Vehicle::Loads
 {
   Vector6d wrench;  // at the CG, world
-  double rudder = 0.0, elevator = 0.0, thrust = 0.0;
+  double rudder = 0.0, elevator = 0.0, differential = 0.0, thrust = 0.0;
   FinPairLoads rudder_loads, elevator_loads;
 };
 
@@ -162,7 +185,17 @@ Actuators Vehicle::restingActuators(double t) const
   a.elevator = FinServo(p_.elevator.max_deflection, p_.elevator.max_rate);
   a.rudder.reset(t, 0.0);
   a.elevator.reset(t, 0.0);
+  a.differential = FinServo(p_.elevator.max_deflection, p_.elevator.max_rate);
+  a.differential.reset(t, 0.0);
   return a;
+}
+
+bool Vehicle::commandDifferential(Actuators& actuators, double t, double differential) const
+{
+  if (!std::isfinite(differential))
+    throw std::invalid_argument("vehicle command: the differential elevator must be finite");
+  actuators.differential.command(t, differential);
+  return std::abs(differential) > p_.elevator.max_deflection;
 }
 
 bool Vehicle::command(Actuators& actuators, double t, double rudder, double elevator, double thrust) const
@@ -219,8 +252,13 @@ Vehicle::Loads Vehicle::loads(double t, const ElementKinematics& k, const Enviro
   const Eigen::Vector3d v_hf = k.velocityAt(p_.horizontal_fin_from_bail / tail) - current;
   out.rudder_loads = finPairLoads(rudder, FinPlane::kVertical, out.rudder, v_vf, frame.x, frame.y, frame.z,
                                   p_.vertical_fin_from_bail - p_.cg_from_bail);
-  out.elevator_loads = finPairLoads(elevator, FinPlane::kHorizontal, out.elevator, v_hf, frame.x, frame.y, frame.z,
-                                    p_.horizontal_fin_from_bail - p_.cg_from_bail);
+  out.differential = actuators.differential.angleAt(t);
+  if (out.differential == 0.0)
+    out.elevator_loads = finPairLoads(elevator, FinPlane::kHorizontal, out.elevator, v_hf, frame.x, frame.y, frame.z,
+                                      p_.horizontal_fin_from_bail - p_.cg_from_bail);
+  else
+    out.elevator_loads = differentialElevatorLoads(elevator, out.elevator, out.differential, v_hf, frame,
+                                                   p_.horizontal_fin_from_bail - p_.cg_from_bail, p_.elevator_span);
   if (p_.rudder_height != 0.0)  // (P57): the rudder's loads act rudder_height above the axis: its heel moment
     out.rudder_loads.moment_cg_W +=
         (p_.rudder_height * frame.z).cross(out.rudder_loads.lift_W + out.rudder_loads.drag_W);
@@ -357,6 +395,7 @@ VehicleOutputs Vehicle::outputs(double t, const ElementKinematics& k, const Envi
   const Loads l = loads(t, k, env, actuators, frame);
   o.rudder = l.rudder;
   o.elevator = l.elevator;
+  o.differential = l.differential;
   o.thrust = l.thrust;
   o.rudder_loads = l.rudder_loads;
   o.elevator_loads = l.elevator_loads;
@@ -423,7 +462,9 @@ const ParamTable<VehicleParams>& vehicleParams()
           .number("roll_damping", &V::roll_damping, "N m s/rad", 0.0, 1e9, kClosed,
                   "linear roll damping against the spin (roll: free)")
           .number("roll_added_inertia", &V::roll_added_inertia, "kg m^2", 0.0, 1e9, kClosed,
-                  "Approach A's added inertia about x_b (roll: free; Approach B: its matrix's)");
+                  "Approach A's added inertia about x_b (roll: free; Approach B: its matrix's)")
+          .number("elevator_span", &V::elevator_span, "m", 0.0, 10.0, kClosed,
+                  "each elevator fin's centre of pressure out from the axis: the differential's roll arm");
   return table;
 }
 

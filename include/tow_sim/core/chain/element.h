@@ -131,6 +131,7 @@ void cableSegmentDynamics(const CableSegmentModel& seg, double t, const ElementK
 struct Actuators
 {
   FinServo rudder, elevator;  // rate-limited fin servos (their angles are known at any time)
+  FinServo differential;      // the elevator's differential (physics.md §5b): starboard fin +, port fin -
   double thrust = 0.0;        // [N] propeller thrust along x_b, saturated
 };
 
@@ -146,7 +147,7 @@ public:
 
 private:
   Actuators& actuators_;
-  const FinServo::State rudder_, elevator_;
+  const FinServo::State rudder_, elevator_, differential_;
 };
 
 // Element nu+1. Implementations: RigidEndElement here; the full towed vehicle plugs in the same way. An
@@ -167,6 +168,9 @@ public:
   // Commands the actuators from time t [s] on; values beyond the limits saturate. Returns true when
   // something saturated. Throws std::invalid_argument for a non-finite value or a body without actuators.
   virtual bool command(Actuators& actuators, double t, double rudder, double elevator, double thrust) const;
+  // The elevator's differential deflection [rad] from time t [s] on (physics.md §5b), saturated like the
+  // elevator (returns true then). Throws std::invalid_argument for a non-finite value or a body without fins.
+  virtual bool commandDifferential(Actuators& actuators, double t, double differential) const;
   // A body that rolls (physics.md §5b) has two more states, its roll angle and spin (ElementKinematics::roll,
   // roll_rate); dynamics() then gives its equations with the spin's acceleration eliminated, and rollRates()
   // the angle's and the spin's rates once the joints' accelerations a_f (bail) and a_a (tail point) are known.

@@ -38,7 +38,7 @@ struct SimulatorState
   double dt = 0.0;        // [s] the adaptive steppers' next step
   int segments = 0;       // nu now (the winch changes it)
   std::vector<double> y;  // StateLayout for segments + 1 joints
-  FinServo::State rudder, elevator;
+  FinServo::State rudder, elevator, differential;
   double thrust = 0.0;         // [N] as saturated
   double winch_command = 0.0;  // [m/s]
   std::vector<char> slack;     // elastic cable: each segment slack (empty: none counted yet)
@@ -107,13 +107,16 @@ public:
   // The data that changes while running. Commands act from time(); the currents are validated first
   // (std::invalid_argument naming the field).
   const ChainData& data() const { return data_; }
-  bool command(double rudder, double elevator, double thrust)  // true if something saturated
+  // Fin angles [rad], thrust [N] and the elevator's differential [rad] (physics.md §5b) from now, or from time t
+  // [s] (a restart); true if something saturated.
+  bool command(double rudder, double elevator, double thrust, double differential = 0.0)
   {
-    return commandAt(t_, rudder, elevator, thrust);
+    return commandAt(t_, rudder, elevator, thrust, differential);
   }
-  bool commandAt(double t, double rudder, double elevator, double thrust)  // from time t [s] (a restart)
+  bool commandAt(double t, double rudder, double elevator, double thrust, double differential = 0.0)
   {
-    return model_->endBody().command(data_.actuators, t, rudder, elevator, thrust);
+    const bool saturated = model_->endBody().command(data_.actuators, t, rudder, elevator, thrust);
+    return model_->endBody().commandDifferential(data_.actuators, t, differential) || saturated;
   }
   // Fins centred, no thrust, from time t [s].
   void resetActuators(double t) { data_.actuators = model_->endBody().restingActuators(t); }
@@ -127,8 +130,8 @@ public:
   // min_length and max_length.
   double setWinchCommand(double payout_rate);
   double winchCommand() const { return data_.winch_command; }
-  double cableLength() const;  // [m] cable out
-  double payoutRate() const;   // [m/s] its rate of change now
+  double cableLength() const { return layout().cableOut(y_); }   // [m] cable out
+  double payoutRate() const { return layout().payoutRate(y_); }  // [m/s] its rate of change now
   const WinchParams& winch() const { return winch_; }
 
   double time() const { return t_; }

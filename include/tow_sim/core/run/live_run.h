@@ -121,7 +121,7 @@ public:
 
   // Commands from outside. Each is refused (false, counted) when not finite or, fins and winch, before the
   // first odometry; `saturated` reports a command limited to the actuator's range.
-  bool finCommand(double rudder, double elevator, double thrust, bool* saturated);
+  bool finCommand(double rudder, double elevator, double thrust, bool* saturated, double differential = 0.0);
   bool winchCommand(double payout_rate, double* applied, std::string* why);  // ends a plan under way
   bool setCurrent(const Eigen::Vector3d& current_W, std::string* why);
   bool setCurrentProfile(const std::vector<CurrentSample>& profile, std::string* why);

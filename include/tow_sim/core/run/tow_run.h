@@ -23,11 +23,12 @@ namespace tow_sim
 // Fins, thrust and winch from a time on (a schedule entry).
 struct CommandEvent
 {
-  double t = 0.0;            // [s]
-  double rudder = 0.0;       // [rad]
-  double elevator = 0.0;     // [rad]
-  double thrust = 0.0;       // [N]
-  double payout_rate = 0.0;  // [m/s] winch, positive pays out (needs winch.enabled)
+  double t = 0.0;             // [s]
+  double rudder = 0.0;        // [rad]
+  double elevator = 0.0;      // [rad]
+  double thrust = 0.0;        // [N]
+  double payout_rate = 0.0;   // [m/s] winch, positive pays out (needs winch.enabled)
+  double differential = 0.0;  // [rad] the elevator's differential (physics.md §5b): starboard fin +, port fin -
 };
 
 // How the cable is laid out when a run starts (and restarts after a divergence). One fallback: when no
@@ -189,7 +190,10 @@ public:
   void setAutopilot(const AutopilotLoop& loop);
 
   // Immediate commands from now on (as Simulator's).
-  bool command(double rudder, double elevator, double thrust) { return sim_.command(rudder, elevator, thrust); }
+  bool command(double rudder, double elevator, double thrust, double differential = 0.0)
+  {
+    return sim_.command(rudder, elevator, thrust, differential);
+  }
   double setWinchCommand(double payout_rate) { return sim_.setWinchCommand(payout_rate); }
   void setCurrent(const Eigen::Vector3d& current_W) { sim_.setCurrent(current_W); }
   void setCurrentProfile(const std::vector<CurrentSample>& profile) { sim_.setCurrentProfile(profile); }

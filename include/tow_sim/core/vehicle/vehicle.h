@@ -76,6 +76,7 @@ struct VehicleParams
   double rudder_height = 0.0;       // [m] the rudder's centre of pressure above the axis (+z_b), [-10, 10]
   double roll_damping = 0.0;        // [N m s/rad] linear, against the spin, [0, 1e9]
   double roll_added_inertia = 0.0;  // [kg m^2] Approach A's added inertia about x_b, [0, 1e9]
+  double elevator_span = 0.25;      // [m] each elevator fin's centre of pressure out from the axis, [0, 10]
 };
 // The parameter table of the vehicle (param_table.h): every key with its unit, range, default and meaning.
 const ParamTable<VehicleParams>& vehicleParams();
@@ -137,6 +138,7 @@ struct VehicleOutputs
   double pitch = 0.0;                   // [rad] REP-103 Euler pitch: rotation about y_b, positive nose DOWN
   double yaw = 0.0;                     // [rad] heading of x_b from world x, counter-clockwise (ENU)
   double rudder = 0.0, elevator = 0.0;  // [rad] actual fin angles
+  double differential = 0.0;            // [rad] the elevator's actual differential (starboard fin +, port -)
   double thrust = 0.0;                  // [N] actual thrust
   FinPairLoads rudder_loads, elevator_loads;
 };
@@ -164,6 +166,7 @@ public:
   // Fin and thrust commands from time t on; values beyond the limits saturate. Returns true when
   // something saturated (the caller may warn).
   bool command(Actuators& actuators, double t, double rudder, double elevator, double thrust) const override;
+  bool commandDifferential(Actuators& actuators, double t, double differential) const override;
 
   VehicleOutputs outputs(double t, const ElementKinematics& k, const Environment& env,
                          const Actuators& actuators) const;
