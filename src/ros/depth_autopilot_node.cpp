@@ -73,6 +73,10 @@ tow_sim::DepthAutopilotConfig DepthAutopilotNode::liveConfig() const
   c.winch_ki = p.winch_ki;
   c.winch_time_constant = p.winch_time_constant;
   c.max_payout_rate = p.max_payout_rate;
+  c.roll_hold = p.roll_hold;
+  c.roll_kp = p.roll_kp;
+  c.roll_kd = p.roll_kd;
+  c.max_differential = p.max_differential;
   return c;
 }
 
@@ -91,6 +95,10 @@ void DepthAutopilotNode::onReconfigure(tow_sim::DepthAutopilotConfig& c)
   p.winch_ki = c.winch_ki;
   p.winch_time_constant = c.winch_time_constant;
   p.max_payout_rate = c.max_payout_rate;
+  p.roll_hold = c.roll_hold;
+  p.roll_kp = c.roll_kp;
+  p.roll_kd = c.roll_kd;
+  p.max_differential = c.max_differential;
   try
   {
     autopilot_.setTuning(p, pnh_.getNamespace() + "/");
@@ -137,6 +145,9 @@ void DepthAutopilotNode::onVehicleOdometry(const nav_msgs::Odometry::ConstPtr& m
     m.received = ros::Time::now().toSec();  // stale by arrival: tow_sim_node stamps trail the clock by odom_delay
     m.p_W = Eigen::Vector3d(p.x, p.y, p.z);
     m.v_W = q.normalized() * Eigen::Vector3d(v.x, v.y, v.z);  // the twist is in the vehicle frame
+    const Eigen::Matrix3d R = q.normalized().toRotationMatrix();
+    m.roll = std::atan2(R(2, 1), R(2, 2));  // REP-103: yaw, pitch, then roll about x_b
+    m.roll_rate = msg->twist.twist.angular.x;
     // Altitude from the newest cable/state of the same moment (within 0.5 s), moved by the depth change
     // since (a flat bottom over that short time).
     if (have_cable_out_ && std::abs(m.t - cable_out_stamp_) <= 0.5)
@@ -314,6 +325,7 @@ void DepthAutopilotNode::tick(const ros::TimerEvent&)
     cmd.rudder = c.rudder;
     cmd.elevator = c.elevator;
     cmd.thrust = c.thrust;
+    cmd.differential = c.differential;
     fin_pub_.publish(cmd);
     if (drives_winch_)
     {

@@ -57,6 +57,32 @@ TEST(DepthAutopilot, TooShallowDivesTooDeepRisesRisingIsDamped)
   EXPECT_NEAR(rising.update(0.0).elevator, -0.2 * 0.5, 1e-12);
 }
 
+TEST(DepthAutopilot, RollHoldCommandsTheDifferentialAgainstTheRoll)
+{
+  DepthAutopilotParams p = noTrack();
+  DepthAutopilot off(p);
+  p.roll_hold = true;
+  p.roll_kp = 2.0;
+  p.roll_kd = 0.5;
+  p.max_differential = 0.1;
+  DepthAutopilot on(p);
+  VehicleMeasurement m = at(0.0, 50.0);
+  EXPECT_EQ((on.addVehicle(m), on.update(0.0)).differential, 0.0);  // roll unknown: nothing to hold
+  m.t = 0.1;
+  m.roll = 0.02;  // starboard down: a positive differential rolls it back to port
+  m.roll_rate = -0.01;
+  EXPECT_DOUBLE_EQ((on.addVehicle(m), on.update(0.1)).differential, 2.0 * 0.02 - 0.5 * 0.01);
+  EXPECT_EQ((off.addVehicle(m), off.update(0.1)).differential, 0.0);  // roll_hold off
+  m.t = 0.2;
+  m.roll = -0.3;
+  EXPECT_EQ((on.addVehicle(m), on.update(0.2)).differential, -0.1);  // saturated
+  m.t = 0.3;
+  m.roll = INFINITY;
+  EXPECT_THROW(on.addVehicle(m), std::invalid_argument);
+  p.max_differential = 0.0;
+  EXPECT_THROW(DepthAutopilot{ p }, std::invalid_argument);
+}
+
 TEST(DepthAutopilot, OutputSaturatesAtMaxElevator)
 {
   DepthAutopilotParams p = noTrack();

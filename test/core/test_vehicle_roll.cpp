@@ -11,6 +11,7 @@
 #include "core/chain_fixtures.h"
 #include "tow_sim/core/analysis/equilibrium.h"
 #include "tow_sim/core/constants.h"
+#include "tow_sim/core/run/tow_run.h"
 #include "tow_sim/core/vehicle/vehicle.h"
 
 namespace tow_sim
@@ -188,6 +189,56 @@ TEST(VehicleRoll, TheDifferentialElevatorRollsItToPort)
   }
   // A differential that is not a number is refused.
   EXPECT_THROW(steadyTow(p, StepperType::kDopri5).sim->command(0.0, 0.0, 0.0, NAN), std::invalid_argument);
+}
+
+// The autopilot's roll hold with roll_kp alone adds kp b C_L |v|^2 to the roll's stiffness (the differential's
+// moment per radian in the fins' linear range): a small roll swings at 2 pi sqrt((I_xx + I_a) / (rho g V h_BG
+// cos theta + kp b C_L |v|^2)), ticking at 200 Hz.
+TEST(VehicleRoll, TheAutopilotsRollHoldStiffensTheRollByItsGain)
+{
+  SimulationConfig c;
+  c.cable.length = 100.0;
+  c.cable.segments = 20;
+  c.vehicle = rollingVehicle();
+  auto ship = std::make_shared<ShipHistory>(1.0, 1000);
+  for (int i = 0; i <= 100; ++i)
+  {
+    ShipPose pose;
+    pose.x = 2.0 * i;
+    pose.speed = 2.0;
+    ship->add(i, Eigen::Vector3d(2.0 * i, 0.0, 0.0), Eigen::Vector3d(2.0, 0.0, 0.0), pose);
+  }
+  AutopilotLoop loop;
+  loop.enabled = true;
+  loop.rate = 200.0;
+  loop.params.track_keeping = false;
+  loop.params.roll_hold = true;
+  loop.params.roll_kp = 1.0;
+  loop.params.roll_kd = 0.0;
+  TowRun run(c, ship);
+  run.setAutopilot(loop);
+  run.start(0.0);
+  run.advanceTo(30.0);
+  RunState state = run.saveState();
+  state.sim.y[state.sim.y.size() - 2] = 0.01;  // rolled 0.01 rad (the roll angle, then the spin, come last)
+  run.restore(state);
+  const double dt = 0.005;
+  std::vector<double> roll;
+  for (int i = 1; i <= 1600; ++i)
+  {
+    run.advanceTo(30.0 + i * dt);
+    roll.push_back(run.snapshot().roll);
+  }
+  const TowSnapshot s = run.snapshot();
+  const VehicleParams& p = c.vehicle;
+  const double restoring =
+      c.environment.water_density * c.environment.gravity * p.displaced_volume * p.cb_above_cg * std::cos(s.pitch);
+  const double held = loop.params.roll_kp * p.elevator_span * p.elevator.lift_constant * s.vehicle.v_cg_W.squaredNorm();
+  const double expected = 2.0 * kPi * std::sqrt((p.inertia_B(0, 0) + p.roll_added_inertia) / (restoring + held));
+  const double period = meanPeriod(roll, dt);
+  std::printf("roll hold: period %.5f s, closed form %.5f s (without the hold %.5f s)\n", period, expected,
+              2.0 * kPi * std::sqrt((p.inertia_B(0, 0) + p.roll_added_inertia) / restoring));
+  EXPECT_NEAR(period, expected, 0.015 * expected);
 }
 
 // With nothing to roll it (no restoring, heel or damping moment; an axisymmetric inertia), the vehicle keeps

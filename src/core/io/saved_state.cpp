@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -120,7 +121,7 @@ void putAutopilot(Writer& w, const DepthAutopilotState& a)
   const VehicleMeasurement& m = a.vehicle;
   w.put("autopilot.vehicle",
         std::vector<double>{ a.has_vehicle ? 1.0 : 0.0, m.t, m.p_W.x(), m.p_W.y(), m.p_W.z(), m.v_W.x(), m.v_W.y(),
-                             m.v_W.z(), m.altitude, m.cable_out, m.received });
+                             m.v_W.z(), m.altitude, m.cable_out, m.received, m.roll, m.roll_rate });
   w.put("autopilot.integral", std::vector<double>{ a.integrated ? 1.0 : 0.0, a.integrated_until, a.integral });
   w.put("autopilot.winch", std::vector<double>{ a.feed_forward ? 1.0 : 0.0, a.cable_out_base, a.winch_integral });
   std::vector<double> track;
@@ -147,7 +148,11 @@ DepthAutopilotState takeAutopilot(Fields& f)
   v = f.take("autopilot.altitude_setpoint", 2);
   a.altitude_mode = flag("autopilot.altitude_setpoint", v[0]);
   a.altitude_setpoint = v[1];
-  v = f.take("autopilot.vehicle", 11);
+  v = f.take("autopilot.vehicle", 0, true);
+  if (v.size() == 11)  // saved before the roll: unknown
+    v.insert(v.end(), 2, std::numeric_limits<double>::quiet_NaN());
+  if (v.size() != 13)
+    f.fail("autopilot.vehicle has " + std::to_string(v.size()) + " values, expected 13 (11 before the roll)");
   a.has_vehicle = flag("autopilot.vehicle", v[0]);
   VehicleMeasurement& m = a.vehicle;
   m.t = v[1];
@@ -156,6 +161,8 @@ DepthAutopilotState takeAutopilot(Fields& f)
   m.altitude = v[8];
   m.cable_out = v[9];
   m.received = v[10];
+  m.roll = v[11];
+  m.roll_rate = v[12];
   v = f.take("autopilot.integral", 3);
   a.integrated = flag("autopilot.integral", v[0]);
   a.integrated_until = v[1];

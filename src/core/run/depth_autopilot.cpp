@@ -133,7 +133,7 @@ void DepthAutopilot::setCableOutFeedForward(double cable_out)
 bool DepthAutopilot::addVehicle(const VehicleMeasurement& m)
 {
   if (!std::isfinite(m.t) || !m.p_W.allFinite() || !m.v_W.allFinite() || std::isinf(m.altitude) ||
-      std::isinf(m.cable_out))
+      std::isinf(m.cable_out) || std::isinf(m.roll) || std::isinf(m.roll_rate))
     throw std::invalid_argument("vehicle odometry: the stamp, position and velocity must be finite");
   if (has_vehicle_ && m.t <= vehicle_.t)
     return false;
@@ -213,6 +213,10 @@ AutopilotCommand DepthAutopilot::update(double now)
     out.track_offset_rate = o.rate;
     out.rudder = std::clamp(-p_.rudder_kp * o.offset - p_.rudder_kd * o.rate, -p_.max_rudder, p_.max_rudder);
   }
+  if (p_.roll_hold && std::isfinite(vehicle_.roll))  // a positive differential rolls it to port
+    out.differential = std::clamp(
+        p_.roll_kp * vehicle_.roll + p_.roll_kd * (std::isfinite(vehicle_.roll_rate) ? vehicle_.roll_rate : 0.0),
+        -p_.max_differential, p_.max_differential);
   return out;
 }
 
@@ -325,7 +329,12 @@ const ParamTable<DepthAutopilotParams>& autopilotParams()
                   "winch: cable out per metre-second of integrated depth error")
           .number("winch_time_constant", &A::winch_time_constant, "s", 0.0, 1000.0, kOpen,
                   "winch: payout rate = (cable out aimed at − cable out) / this")
-          .number("max_payout_rate", &A::max_payout_rate, "m/s", 0.0, 100.0, kOpen, "winch: payout command limit");
+          .number("max_payout_rate", &A::max_payout_rate, "m/s", 0.0, 100.0, kOpen, "winch: payout command limit")
+          .boolean("roll_hold", &A::roll_hold,
+                   "hold a rolling vehicle (vehicle.roll: free) level with the elevator's differential")
+          .number("roll_kp", &A::roll_kp, "rad/rad", 0.0, 100.0, kClosed, "differential per radian of roll")
+          .number("roll_kd", &A::roll_kd, "rad/(rad/s)", 0.0, 100.0, kClosed, "differential per rad/s of roll rate")
+          .number("max_differential", &A::max_differential, "rad", 0.0, kHalfPi, kOpen, "differential limit");
   return table;
 }
 

@@ -209,6 +209,8 @@ void TowRun::autopilotTick(double t)
   m.t = t;
   m.p_W = o.p_cg_W;
   m.v_W = o.v_cg_W;
+  m.roll = o.roll;  // 0 unless the vehicle rolls
+  m.roll_rate = o.omega_B.x();
   if (model_->seabed())
     m.altitude = model_->seabed()->altitude(o.p_cg_W);
   if (config_.winch.enabled)
@@ -217,7 +219,7 @@ void TowRun::autopilotTick(double t)
   const ShipPose pose = ship_->pose(t);
   autopilot_->addShip(Eigen::Vector2d(pose.x, pose.y));
   const AutopilotCommand c = autopilot_->update(t);
-  sim_.command(c.rudder, c.elevator, c.thrust);
+  sim_.command(c.rudder, c.elevator, c.thrust, c.differential);
   if (c.winch && !sim_.parted())
     sim_.setWinchCommand(c.payout_rate);
 }

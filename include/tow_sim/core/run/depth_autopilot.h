@@ -55,6 +55,13 @@ struct DepthAutopilotParams
   double winch_ki = 0.05;             // [m/(m s)] integral gain, [0, 100]
   double winch_time_constant = 30.0;  // [s] of the payout toward L*, (0, 1000]
   double max_payout_rate = 0.5;       // [m/s] payout command limit, (0, 100]
+  // Roll hold (a vehicle with vehicle.roll: free, physics.md §5b): the elevator's differential
+  // clamp(roll_kp phi + roll_kd p, +-max_differential) from the measured roll phi and spin p (a positive
+  // differential rolls the vehicle to port, phi < 0). Off: the differential stays 0.
+  bool roll_hold = false;
+  double roll_kp = 1.0;           // [rad/rad] differential per radian of roll, [0, 100]
+  double roll_kd = 0.2;           // [rad/(rad/s)] differential per rad/s of spin, [0, 100]
+  double max_differential = 0.2;  // [rad] output limit, (0, pi/2]
 
   // Throws std::invalid_argument naming `prefix + key`, the value and its range.
   void validate(const std::string& prefix = "") const;
@@ -103,6 +110,8 @@ struct VehicleMeasurement
   Eigen::Vector3d v_W = Eigen::Vector3d::Zero();                // [m/s] CG velocity, world ENU
   double altitude = std::numeric_limits<double>::quiet_NaN();   // [m] CG above the seabed; NaN: unknown
   double cable_out = std::numeric_limits<double>::quiet_NaN();  // [m] the winch's; NaN: unknown (no winch command)
+  // [rad] roll (REP-103, positive starboard down) and [rad/s] the spin about x_b; NaN: unknown (no roll hold)
+  double roll = std::numeric_limits<double>::quiet_NaN(), roll_rate = std::numeric_limits<double>::quiet_NaN();
   // [s] when it arrived, on update()'s clock; NaN: at its stamp. Staleness counts from here.
   double received = std::numeric_limits<double>::quiet_NaN();
 };
@@ -116,11 +125,12 @@ struct AutopilotCommand
     kActive
   };
   Status status = Status::kWaiting;
-  double rudder = 0.0;       // [rad]
-  double elevator = 0.0;     // [rad]
-  double thrust = 0.0;       // [N]
-  double depth_error = 0.0;  // [m] setpoint - depth (positive: too shallow)
-  double integral = 0.0;     // [rad] the integral term's contribution to the elevator
+  double rudder = 0.0;        // [rad]
+  double elevator = 0.0;      // [rad]
+  double thrust = 0.0;        // [N]
+  double differential = 0.0;  // [rad] the elevator's differential (roll_hold), starboard fin +
+  double depth_error = 0.0;   // [m] setpoint - depth (positive: too shallow)
+  double integral = 0.0;      // [rad] the integral term's contribution to the elevator
   bool elevator_saturated = false;
   bool tracking = false;           // the rudder is steering on the ship's track
   double track_offset = 0.0;       // [m] positive to port
