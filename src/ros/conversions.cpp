@@ -209,8 +209,9 @@ sensor_msgs::JointState toJointState(const TowSnapshot& s, const std_msgs::Heade
 {
   sensor_msgs::JointState joints;
   joints.header.stamp = header.stamp;  // no frame: joint states have none
-  joints.name = { rudderJointName(vehicle_frame), elevatorJointName(vehicle_frame) };
-  joints.position = { s.vehicle.rudder, s.vehicle.elevator };
+  joints.name = { rudderJointName(vehicle_frame), elevatorJointName(vehicle_frame),
+                  differentialJointName(vehicle_frame) };
+  joints.position = { s.vehicle.rudder, s.vehicle.elevator, s.vehicle.differential };
   return joints;
 }
 

@@ -164,12 +164,15 @@ void addVehicle(const TowSnapshot& s, const VehicleParams& vp, const NodeParams&
   };
   // Positive rudder turns the leading edge to port (about +z_b); positive elevator lifts it (about -y_b).
   const Eigen::Quaterniond rudder(Eigen::AngleAxisd(s.vehicle.rudder, Eigen::Vector3d::UnitZ()));
-  const Eigen::Quaterniond elevator(Eigen::AngleAxisd(-s.vehicle.elevator, Eigen::Vector3d::UnitY()));
+  // The elevator's differential (physics.md (P57a)): starboard fin at elevator + differential, port at minus.
+  const double e = s.vehicle.elevator, d = s.vehicle.differential;
+  const Eigen::Quaterniond port(Eigen::AngleAxisd(-(e - d), Eigen::Vector3d::UnitY()));
+  const Eigen::Quaterniond starboard(Eigen::AngleAxisd(-(e + d), Eigen::Vector3d::UnitY()));
   const double thickness = 0.02 * k;
   fin(1, vp.vertical_fin_from_bail, Eigen::Vector3d::UnitZ(), rudder, Eigen::Vector3d(chord, thickness, span));
   fin(2, vp.vertical_fin_from_bail, -Eigen::Vector3d::UnitZ(), rudder, Eigen::Vector3d(chord, thickness, span));
-  fin(3, vp.horizontal_fin_from_bail, Eigen::Vector3d::UnitY(), elevator, Eigen::Vector3d(chord, span, thickness));
-  fin(4, vp.horizontal_fin_from_bail, -Eigen::Vector3d::UnitY(), elevator, Eigen::Vector3d(chord, span, thickness));
+  fin(3, vp.horizontal_fin_from_bail, Eigen::Vector3d::UnitY(), port, Eigen::Vector3d(chord, span, thickness));
+  fin(4, vp.horizontal_fin_from_bail, -Eigen::Vector3d::UnitY(), starboard, Eigen::Vector3d(chord, span, thickness));
 }
 
 // The cable's pull on the ship, -T_1, drawn from the tow point, and the tension labels.

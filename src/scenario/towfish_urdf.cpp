@@ -142,6 +142,10 @@ std::string elevatorJointName(const std::string& vehicle_frame)
 {
   return vehicle_frame + "_elevator_joint";
 }
+std::string differentialJointName(const std::string& vehicle_frame)
+{
+  return vehicle_frame + "_elevator_differential_joint";
+}
 
 std::string towfishUrdf(const VehicleParams& v, const TowfishDescription& d)
 {
@@ -174,9 +178,17 @@ std::string towfishUrdf(const VehicleParams& v, const TowfishDescription& d)
            box(Eigen::Vector3d(0, 0, -out), Eigen::Vector3d(chord, 0.02, span), "fin"));
   joint(os, elevatorJointName(f), "revolute", f, f + "_elevator", Eigen::Vector3d(x(v.horizontal_fin_from_bail), 0, 0),
         Eigen::Vector3d::Zero(), finLimits(v.elevator, -Eigen::Vector3d::UnitY()));
-  link(os, f + "_elevator",
-       box(Eigen::Vector3d(0, out, 0), Eigen::Vector3d(chord, span, 0.02), "fin") +
-           box(Eigen::Vector3d(0, -out, 0), Eigen::Vector3d(chord, span, 0.02), "fin"));
+  link(os, f + "_elevator");
+  // Each elevator fin turns from the pair by the differential (physics.md (P57a)): the starboard one by it, the
+  // port one by its opposite (a mimic joint).
+  joint(os, differentialJointName(f), "revolute", f + "_elevator", f + "_elevator_starboard", Eigen::Vector3d::Zero(),
+        Eigen::Vector3d::Zero(), finLimits(v.elevator, -Eigen::Vector3d::UnitY()));
+  link(os, f + "_elevator_starboard", box(Eigen::Vector3d(0, -out, 0), Eigen::Vector3d(chord, span, 0.02), "fin"));
+  joint(os, f + "_elevator_port_joint", "revolute", f + "_elevator", f + "_elevator_port", Eigen::Vector3d::Zero(),
+        Eigen::Vector3d::Zero(),
+        finLimits(v.elevator, -Eigen::Vector3d::UnitY()) + "    <mimic joint=\"" + differentialJointName(f) +
+            "\" multiplier=\"-1\"/>\n");
+  link(os, f + "_elevator_port", box(Eigen::Vector3d(0, out, 0), Eigen::Vector3d(chord, span, 0.02), "fin"));
   joint(os, f + "_bail_joint", "fixed", f, f + "_bail", Eigen::Vector3d(x(0.0), 0, 0), Eigen::Vector3d::Zero());
   link(os, f + "_bail");
   for (const SensorFrame& s : d.sensors)

@@ -91,6 +91,13 @@ TEST(TowfishUrdf, DescriptionParsesWithTheConfiguredJointsAndFrames)
   EXPECT_NEAR(elevator->parent_to_joint_origin_transform.position.x, kElevatorX, 1e-9);
   EXPECT_EQ(rudder->axis.z, 1.0);  // positive rudder: leading edge to port
   EXPECT_EQ(elevator->axis.y, -1.0);
+  // The elevator's differential: the starboard fin's joint, the port fin's its mimic with the opposite sense.
+  const auto differential = model.getJoint("fish_elevator_differential_joint"),
+             port = model.getJoint("fish_elevator_port_joint");
+  ASSERT_TRUE(differential && port && port->mimic);
+  EXPECT_EQ(differential->child_link_name, "fish_elevator_starboard");
+  EXPECT_EQ(port->mimic->joint_name, "fish_elevator_differential_joint");
+  EXPECT_EQ(port->mimic->multiplier, -1.0);
   EXPECT_NEAR(rudder->limits->upper, 0.436, 1e-12);  // the default max_deflection
   EXPECT_NEAR(model.getJoint("fish_hull_joint")->parent_to_joint_origin_transform.position.x, kHullX, 1e-9);
   EXPECT_NEAR(model.getJoint("fish_bail_joint")->parent_to_joint_origin_transform.position.x, 0.2, 1e-9);
@@ -109,16 +116,21 @@ TEST(TowfishUrdf, TfHasTheFinAndSensorFramesAndTheElevatorFollowsItsCommand)
   ship.run(3.0, 0.0);
   ship.run(4.0, 0.3);  // 0.3 rad reached after 0.86 s at the default 0.35 rad/s
   const sensor_msgs::JointState joints = ship.joints();
-  ASSERT_EQ(joints.name.size(), 2u);
+  ASSERT_EQ(joints.name.size(), 3u);
   EXPECT_EQ(joints.name[1], "fish_elevator_joint");
+  EXPECT_EQ(joints.name[2], "fish_elevator_differential_joint");
   EXPECT_NEAR(joints.position[1], 0.3, 1e-6);
   EXPECT_NEAR(joints.position[0], 0.0, 1e-6);
+  EXPECT_EQ(joints.position[2], 0.0);  // no differential commanded
 
   geometry_msgs::TransformStamped fin, camera, dvl, world;
   ASSERT_NO_THROW(fin = buffer.lookupTransform("fish", "fish_elevator", ros::Time(0), ros::Duration(2.0)));
   ASSERT_NO_THROW(camera = buffer.lookupTransform("fish", "fish_camera", ros::Time(0), ros::Duration(2.0)));
   ASSERT_NO_THROW(dvl = buffer.lookupTransform("fish", "fish_dvl", ros::Time(0), ros::Duration(2.0)));
   ASSERT_NO_THROW(world = buffer.lookupTransform("odom", "fish_elevator", ros::Time(0), ros::Duration(2.0)));
+  // robot_state_publisher turns the differential's mimic joint into the port fin's frame too.
+  EXPECT_NO_THROW(buffer.lookupTransform("fish_elevator", "fish_elevator_port", ros::Time(0), ros::Duration(2.0)));
+  EXPECT_NO_THROW(buffer.lookupTransform("fish_elevator", "fish_elevator_starboard", ros::Time(0), ros::Duration(2.0)));
   const auto& q = fin.transform.rotation;
   const tf2::Matrix3x3 R(tf2::Quaternion(q.x, q.y, q.z, q.w));
   const tf2::Vector3 leading_edge = R * tf2::Vector3(1, 0, 0);

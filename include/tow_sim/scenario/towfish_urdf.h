@@ -39,9 +39,11 @@ std::vector<SensorFrame> defaultSensorFrames(double hull_diameter);
 TowfishDescription readTowfishDescription(const YAML::Node& root);
 
 // The joints tow_sim_node's joint_states names (positions: the actual fin angles [rad], the simulation's
-// senses: a positive rudder turns the leading edge to port, a positive elevator lifts it).
+// senses: a positive rudder turns the leading edge to port, a positive elevator lifts it; the elevator's
+// differential lifts the starboard fin's leading edge by it and, its mimic, the port fin's by its opposite).
 std::string rudderJointName(const std::string& vehicle_frame);
 std::string elevatorJointName(const std::string& vehicle_frame);
+std::string differentialJointName(const std::string& vehicle_frame);
 
 // The URDF document.
 std::string towfishUrdf(const VehicleParams& vehicle, const TowfishDescription& description);
