@@ -163,6 +163,34 @@ TEST(VehicleRoll, RudderHeelIsBalancedByTheBuoyancyMoment)
   }
 }
 
+// In a steady turn the whole tow turns at the ship's rate r = U/R about the vertical, so the pitched body spins
+// about its own axis at p = omega . x_b = -r sin(theta) while its roll stays constant; the roll damping's
+// moment -c p then stands against the buoyancy's: rho g V h_BG sin(phi) cos(theta) = c r sin(theta) (nothing else
+// on the axis rolls it; the gyroscopic moment of an axisymmetric body in a steady turn is about y_b). A nose-up
+// vehicle (theta < 0) turning to port (r > 0) heels to port (phi < 0).
+TEST(VehicleRoll, ASteadyTurnHeelsItByTheRollDampingOfItsSpin)
+{
+  VehicleParams p = rollingVehicle();
+  p.roll_damping = 2000.0;
+  const double radius = 150.0, rate = 2.0 / radius;
+  for (StepperType stepper : { StepperType::kDopri5, StepperType::kImplicit })
+  {
+    Tow tow = steadyTow(p, stepper, turningShip(5.0, radius));
+    tow.sim->advanceTo(900.0);
+    const VehicleOutputs o = tow.out();
+    const Environment& env = tow.sim->data().environment;
+    const double buoyancy_arm = env.water_density * env.gravity * p.displaced_volume * p.cb_above_cg;
+    const double expected = std::asin(p.roll_damping * rate * std::sin(o.pitch) / (buoyancy_arm * std::cos(o.pitch)));
+    std::printf(
+        "steady turn (R %.0f m): heel %.5f deg, balance %.5f deg; spin %.6f rad/s, -r sin(theta) %.6f; "
+        "yaw rate %.6f rad/s\n",
+        radius, o.roll * 180.0 / kPi, expected * 180.0 / kPi, o.omega_B.x(), -rate * std::sin(o.pitch), o.omega_W.z());
+    EXPECT_NEAR(o.omega_W.z(), rate, 1e-3 * rate);  // the turn is steady
+    EXPECT_LT(o.roll, 0.0);
+    EXPECT_NEAR(o.roll, expected, 0.01 * std::abs(expected));
+  }
+}
+
 // The elevator's differential delta_a (starboard fin +, port fin -) in the fins' linear range gives the roll moment
 // -b C_L |v_p|^2 delta_a about x_b (each fin half the pair's lift constant C_L, b = elevator_span): the vehicle
 // heels to port until rho g V h_BG sin(phi) cos(theta) balances it. |v_p| here: the vehicle's speed through the
