@@ -171,7 +171,7 @@ TEST(VehicleRoll, RudderHeelIsBalancedByTheBuoyancyMoment)
 TEST(VehicleRoll, ASteadyTurnHeelsItByTheRollDampingOfItsSpin)
 {
   VehicleParams p = rollingVehicle();
-  p.roll_damping = 2000.0;
+  p.roll_damping = 300.0;
   const double radius = 150.0, rate = 2.0 / radius;
   for (StepperType stepper : { StepperType::kDopri5, StepperType::kImplicit })
   {
