@@ -136,6 +136,44 @@ TEST_P(RollPeriod, IsTheMetacentricClosedForm)
 INSTANTIATE_TEST_SUITE_P(Steppers, RollPeriod, ::testing::Values(StepperType::kDopri5, StepperType::kImplicit),
                          [](const auto& info) { return info.param == StepperType::kDopri5 ? "dopri5" : "implicit"; });
 
+// In still water, a vehicle hung at its CG (bail, CG and CB at one station: no pitching moment, so its axis stays
+// level) swings in roll at T = 2 pi sqrt((I_xx + I_a) / (rho g V h_BG)), the submerged body's metacentric form.
+TEST(VehicleRoll, InStillWaterItSwingsOnItsMetacentricHeight)
+{
+  VehicleParams p = rollingVehicle();
+  p.cg_from_bail = p.cb_from_bail = 0.0;
+  Tow tow;
+  CableParams cable;
+  cable.length = 50.0;
+  cable.segments = 10;
+  NumericsParams num;
+  tow.vehicle = std::make_shared<Vehicle>(p, num);
+  tow.model = std::make_shared<ChainModel>(cable, tow.vehicle, Environment(), num);
+  tow.sim =
+      std::make_unique<Simulator>(tow.model, constantVelocityShip(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()));
+  ChainState start =
+      straightChain(*tow.model, Eigen::Vector3d::Zero(), -Eigen::Vector3d::UnitZ(), Eigen::Vector3d::Zero());
+  const int tail = cable.segments;
+  start.x.col(tail) = start.x.col(tail - 1) - p.tail_from_bail * Eigen::Vector3d::UnitX();  // level, nose to +x
+  tow.sim->reset(0.0, start);
+  tow.setRoll(0.05, 0.0);
+  const double dt = 0.005;
+  std::vector<double> roll;
+  for (int i = 1; i <= 1600; ++i)
+  {
+    tow.sim->advanceTo(i * dt);
+    roll.push_back(tow.out().roll);
+  }
+  const Environment& env = tow.sim->data().environment;
+  const double stiffness = env.water_density * env.gravity * p.displaced_volume * p.cb_above_cg;
+  const double expected = 2.0 * kPi * std::sqrt((p.inertia_B(0, 0) + p.roll_added_inertia) / stiffness);
+  const double period = meanPeriod(roll, dt);
+  std::printf("still water: roll period %.5f s, closed form %.5f s; pitch now %.2e rad\n", period, expected,
+              tow.out().pitch);
+  EXPECT_NEAR(tow.out().pitch, 0.0, 1e-6);  // stays level
+  EXPECT_NEAR(period, expected, 2e-3 * expected);
+}
+
 // A rudder whose centre of pressure is rudder_height above the axis heels the vehicle until the buoyancy's
 // moment balances it: rho g V h_BG sin(phi) cos(theta) = -rudder_height F_y (F_y the rudder's side force, body
 // axes): a side force to port above the axis rolls the vehicle port side down (phi < 0).
