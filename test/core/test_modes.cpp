@@ -120,6 +120,28 @@ TEST(Modes, AHeavyBodyOnALightCableSwingsAsTheTwoDegreeOfFreedomPendulum)
   }
 }
 
+// A body hung at its CG (bail, CG and CB at one station) has no stiffness in its swing about the bail: a mode of
+// zero frequency, about which shift-invert Arnoldi has nothing to invert. lowestModes then gives the dense solve's.
+TEST(Modes, AModeOfZeroFrequencyFallsBackToTheDenseSolve)
+{
+  CableParams cable;
+  cable.segments = 20;
+  cable.length = 10.0;
+  EndElementParams end;
+  end.mass = 100.0;
+  end.length = 1.0;
+  end.cg_from_bail = end.cb_from_bail = 0.0;
+  end.displaced_volume = 0.0;
+  end.transverse_inertia = 2.0;
+  Environment env;
+  env.water_density = 0.0;
+  const std::vector<Mode> dense = hangingModes(cable, end, env), lowest = hangingModes(cable, end, env, 6);
+  ASSERT_EQ(lowest.size(), 6u);
+  EXPECT_LT(lowest.front().frequency, 1e-6);  // the body's free swing
+  for (size_t k = 0; k < lowest.size(); ++k)
+    EXPECT_EQ(lowest[k].frequency, dense[k].frequency) << k;
+}
+
 // lowestModes (shift-invert Arnoldi on the joints' amplitudes, each element linearised alone) against naturalModes
 // (angle coordinates differenced through the whole solve, the dense eigenproblem): the ten lowest modes of a steady
 // tow in a cross current and of a two-part tow (sections, a clump, a float, a winged depressor), whose modes are

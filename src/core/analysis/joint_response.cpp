@@ -363,20 +363,22 @@ std::vector<Mode> lowestModes(const ChainModel& model, const ChainGeometry& geom
                               const ShipEndState& ship, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
                               std::size_t count, double step)
 {
-  // The dense linearisation, as motionResponses; and where the Krylov space would hold a good part of the whole.
-  if (model.elastic() || model.bends() || 8 * count + 40 >= 6 * static_cast<std::size_t>(x.cols()))
+  auto dense = [&]
   {
     std::vector<Mode> modes = naturalModes(model, geometry, data, t, ship, x, v, step);
     modes.resize(std::min(count, modes.size()));
     return modes;
-  }
+  };
+  // The dense linearisation, as motionResponses; and where the Krylov space would hold a good part of the whole.
+  if (model.elastic() || model.bends() || 8 * count + 40 >= 6 * static_cast<std::size_t>(x.cols()))
+    return dense();
   const JointLinearisation L = lineariseJoints(model, geometry, data, t, ship, x, v, step);
   const JointMatrices J = jointMatrices(L);
   const Eigen::Index dof = J.M.rows(), size = 2 * dof;
   std::vector<Eigen::Matrix<C, 6, 6>> A;
   Eigen::SparseLU<Eigen::SparseMatrix<C>> lu(harmonicMatrix(L, 0.0, A));
-  if (lu.info() != Eigen::Success)
-    throw std::runtime_error("natural modes: the linearised chain has a mode of zero frequency (it is singular)");
+  if (lu.info() != Eigen::Success)  // a mode of zero frequency: nothing to invert about 0; the dense solve has it
+    return dense();
   // A start in the operator's range, where the constraints hold (the pencil's infinite eigenvalues purged).
   std::mt19937 random(1);
   std::normal_distribution<double> normal;
