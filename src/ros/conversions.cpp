@@ -223,6 +223,7 @@ tow_sim::FinLoads toFinLoads(const TowSnapshot& s, const std_msgs::Header& heade
   loads.header.frame_id = vehicle_frame;
   loads.rudder_angle = o.rudder;
   loads.elevator_angle = o.elevator;
+  loads.elevator_differential = o.differential;
   loads.thrust = o.thrust;
   loads.rudder_angle_of_attack = o.rudder_loads.angle_of_attack;
   loads.elevator_angle_of_attack = o.elevator_loads.angle_of_attack;
