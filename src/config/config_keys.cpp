@@ -100,13 +100,17 @@ void requireSameConfiguration(const std::map<std::string, std::string>& saved,
     const auto it = m.find(key);
     return it == m.end() ? std::string("(none)") : it->second;
   };
+  // A key the saved state does not have came after it was saved: the state ran as that key's default (each new
+  // option defaults to the model before it), so only a value other than the default differs.
+  static const std::map<std::string, std::string> defaults = configurationKeys(SimulationConfig());
   std::set<std::string> keys;
   for (const auto& entry : saved)
     keys.insert(entry.first);
   for (const auto& entry : now)
     keys.insert(entry.first);
   for (const std::string& key : keys)
-    if (value(saved, key) != value(now, key))
+    if (value(saved, key) != value(now, key) &&
+        !(!saved.count(key) && defaults.count(key) && value(defaults, key) == value(now, key)))
       differ.push_back(key);
   if (differ.empty())
     return;

@@ -129,6 +129,22 @@ TEST(SavedConfiguration, RestoredUnderAnotherConfigurationItIsRefusedNamingTheKe
   EXPECT_EQ(restoreError(other, path, true), "(ran)");  // asked for: it runs on the other configuration
   // A state without a configuration (format 1, or written by hand) is not checked.
   EXPECT_NO_THROW(requireSameConfiguration({}, other.config, "-"));
+  // A key added after the state was saved: at its default (the model the state ran), no difference; set, one.
+  std::map<std::string, std::string> older = configurationKeys(sc.config);
+  ASSERT_EQ(older.erase("vehicle.roll"), 1u);
+  EXPECT_NO_THROW(requireSameConfiguration(older, sc.config, "-"));
+  Scenario rolling = sc;
+  rolling.config.vehicle.roll = VehicleRoll::kFree;
+  try
+  {
+    requireSameConfiguration(older, rolling.config, "-");
+    ADD_FAILURE() << "a key set away from its default since the state was saved was not refused";
+  }
+  catch (const std::invalid_argument& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("1 key differs: vehicle.roll (saved (none), now free)"), std::string::npos)
+        << e.what();
+  }
 }
 
 // The bathymetry is compared by its content: the same grid from another folder is the same seabed, an edited

@@ -45,7 +45,8 @@ YAML::Node toYaml(const SimulationConfig& config);
 std::map<std::string, std::string> configurationKeys(const SimulationConfig& config);
 // Throws std::invalid_argument when a saved state's configuration (not empty: recorded) differs from
 // `config`'s keys, naming the keys that differ (up to 8) with their saved and current values, then `hint`
-// (how to load it all the same).
+// (how to load it all the same). A key the state lacks (added to tow_sim after it was saved) differs only when
+// its value now is not its default.
 void requireSameConfiguration(const std::map<std::string, std::string>& saved, const SimulationConfig& config,
                               const std::string& hint);
 // The same against keys already flattened (configurationKeys).
