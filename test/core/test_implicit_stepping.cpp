@@ -6,6 +6,7 @@
 // (`make accuracy` runs 100 and 1000: about half an hour, most of it the dopri5 references).
 #include <gtest/gtest.h>
 
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -85,6 +86,36 @@ std::vector<int> accuracySegments()
   for (std::string item; std::getline(list, item, ',');)
     out.push_back(std::stoi(item));
   return out;
+}
+
+// advanceTo starts from the J of the step that ended where it starts, unless the data changed since (commands,
+// current, waves, winch): the run is bit-identical to one made to linearise afresh at every call (a current set
+// to its own value forces that), and a command costs one more linearisation.
+TEST(ImplicitStepping, AnAdvanceKeepsTheLinearisationOfAnUnchangedStateAndItsData)
+{
+  Scenario sc = test::shippedScenario("turn_180");
+  sc.config.cable.segments = 30;
+  sc.config.numerics = implicitAdaptive();
+  auto ship = std::make_shared<ShipHistory>(buildShipPath(sc));
+  TowRun kept(sc.config, ship, sc.initial), fresh(sc.config, ship, sc.initial);
+  kept.start(0.0);
+  fresh.start(0.0);
+  for (int second = 1; second <= 60; ++second)
+  {
+    const long before = kept.simulator().linearisations();
+    const StepReport report = kept.advanceTo(second);
+    // One per accepted step, none at the call's start.
+    ASSERT_EQ(kept.simulator().linearisations() - before, report.steps) << "t = " << second << " s";
+    fresh.setCurrent(Eigen::Vector3d::Zero());  // turn_180's current: unchanged, but J taken afresh
+    const long fresh_before = fresh.simulator().linearisations();
+    const StepReport fresh_report = fresh.advanceTo(second);
+    ASSERT_EQ(fresh.simulator().linearisations() - fresh_before, fresh_report.steps + 1) << "t = " << second << " s";
+  }
+  EXPECT_EQ(kept.simulator().stateVector(), fresh.simulator().stateVector());  // bit for bit
+  const long before = kept.simulator().linearisations();
+  kept.command(0.1, 0.0, 0.0);
+  const StepReport report = kept.advanceTo(61.0);
+  EXPECT_EQ(kept.simulator().linearisations() - before, report.steps + 1);
 }
 
 // The bar at the default tolerances: 0.5 % in depth, layback and both tensions, 1 m in diversion,

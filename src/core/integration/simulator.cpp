@@ -50,6 +50,7 @@ Simulator::~Simulator() = default;
 
 void Simulator::wholeCable()
 {
+  forgetLinearisation();
   chains_.assign(1, Chain(model_->initialGeometry(), StateLayout{}));
   y_.assign(layout().size(), 0.0);
   dydt_.assign(y_.size(), 0.0);
@@ -64,6 +65,7 @@ double Simulator::setWinchCommand(double payout_rate)
     throw std::invalid_argument("winch command: the cable has parted");
   if (!std::isfinite(payout_rate))
     throw std::invalid_argument("winch command: the payout rate must be a finite number [m/s]");
+  forgetLinearisation();
   data_.winch_command = std::clamp(payout_rate, -winch_.max_rate, winch_.max_rate);
   return data_.winch_command;
 }
@@ -99,7 +101,7 @@ void Simulator::derivative(double t, const StateVector& y, StateVector& dydt) co
   L.payoutRate(dydt) = winch_.enabled ? geometry.first_acceleration : 0.0;
 }
 
-void Simulator::refreshOutputs()
+void Simulator::refreshOutputs(bool keep_linearisation)
 {
   vehicleSide().setGeometry(geometryOf(y_));
   dydt_.resize(chains_.back().layout().end());
@@ -109,8 +111,12 @@ void Simulator::refreshOutputs()
   const StateLayout& L = layout();
   L.cableOut(dydt_) = winch_.enabled ? L.payoutRate(y_) : 0.0;
   L.payoutRate(dydt_) = winch_.enabled ? geometry().first_acceleration : 0.0;
-  if (implicit())
+  if (implicit() && !(keep_linearisation && linearised_t_ == t_ && linearised_size_ == y_.size()))
+  {
     linearise();
+    linearised_t_ = t_;
+    linearised_size_ = y_.size();
+  }
 }
 
 void Simulator::project(double t)
@@ -150,7 +156,7 @@ StepReport Simulator::advanceTo(double t_end)
   explicit_ = std::make_unique<ExplicitStepper>(model_->numerics());
   // The commands, the current or the thrust may have changed since the last step: the derivative the
   // first step starts from (k1, first-same-as-last) is taken afresh.
-  refreshOutputs();
+  refreshOutputs(true);
   // While the winch runs, a step shortens the first segment by at most half the band's lower edge (the
   // rate stays within max_rate), so it never collapses before the merge that follows the step.
   const double winch_step = winch_.enabled

@@ -35,6 +35,7 @@ void Simulator::linearise()
   const Eigen::Vector2d winch =
       !parted() ? winchAccelerationDerivatives(winch_, data_.winch_command, L.cableOut(y_), L.payoutRate(y_))
                 : Eigen::Vector2d::Zero();
+  ++linearisations_;
   implicit_.beginLinearisation(chains_.size(), winch.x(), winch.y());
   const ShipEndState ship = ship_(t_);
   for (std::size_t i = 0; i < chains_.size(); ++i)

@@ -76,6 +76,7 @@ void Simulator::restoreLayout(int segments, double cable_out)
 {
   if (parted())
     throw std::logic_error("restoreLayout: the cable has parted: rejoin() it first");
+  forgetLinearisation();
   vehicleSide().setGeometry(laidOut(*model_, winch_, geometry(), segments, cable_out));
   y_.assign(layout().size(), 0.0);
   layout().cableOut(y_) = cable_out;

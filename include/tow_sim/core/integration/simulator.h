@@ -107,6 +107,9 @@ public:
   // The data that changes while running. Commands act from time(); the currents are validated first
   // (std::invalid_argument naming the field).
   const ChainData& data() const { return data_; }
+  // How many times the implicit stepper has linearised (S16) so far: once per accepted step, and at an
+  // advanceTo whose state or data changed since (tests and benchmarks count them).
+  long linearisations() const { return linearisations_; }
   // Fin angles [rad], thrust [N] and the elevator's differential [rad] (physics.md §5b) from now, or from time t
   // [s] (a restart); true if something saturated.
   bool command(double rudder, double elevator, double thrust, double differential = 0.0)
@@ -115,14 +118,31 @@ public:
   }
   bool commandAt(double t, double rudder, double elevator, double thrust, double differential = 0.0)
   {
+    forgetLinearisation();
     const bool saturated = model_->endBody().command(data_.actuators, t, rudder, elevator, thrust);
     return model_->endBody().commandDifferential(data_.actuators, t, differential) || saturated;
   }
   // Fins centred, no thrust, from time t [s].
-  void resetActuators(double t) { data_.actuators = model_->endBody().restingActuators(t); }
-  void setCurrent(const Eigen::Vector3d& current_W) { tow_sim::setCurrent(data_, current_W); }
-  void setCurrentProfile(const std::vector<CurrentSample>& profile) { tow_sim::setCurrentProfile(data_, profile); }
-  void setWaveTime(double wave_time) { tow_sim::setWaveTime(data_, wave_time); }
+  void resetActuators(double t)
+  {
+    forgetLinearisation();
+    data_.actuators = model_->endBody().restingActuators(t);
+  }
+  void setCurrent(const Eigen::Vector3d& current_W)
+  {
+    forgetLinearisation();
+    tow_sim::setCurrent(data_, current_W);
+  }
+  void setCurrentProfile(const std::vector<CurrentSample>& profile)
+  {
+    forgetLinearisation();
+    tow_sim::setCurrentProfile(data_, profile);
+  }
+  void setWaveTime(double wave_time)
+  {
+    forgetLinearisation();
+    tow_sim::setWaveTime(data_, wave_time);
+  }
 
   // Winch: the commanded payout rate [m/s] (positive pays out), saturated at +-max_rate (returned).
   // Throws std::invalid_argument if it is not finite or the winch is disabled. The rate follows the
@@ -176,7 +196,7 @@ private:
   ChainGeometry geometryOf(const StateVector& y) const;
   bool remesh(double t);  // split or merge the first segment (remeshFirstSegment, winch.h)
   void project(double t);
-  void refreshOutputs();
+  void refreshOutputs(bool keep_linearisation = false);
   void stepOnce(double t_end, double winch_step, StepReport& report);  // one accepted or rejected step
   void acceptStep(StepReport& report);  // after an accepted step: re-mesh, project, outputs, snaps, parting
   // The implicit stepper's step: false when rejected (dt_ then holds the step to try next).
@@ -200,7 +220,14 @@ private:
   std::vector<Chain> chains_;  // at least one: vehicleSide()
   double t_ = 0.0;
   double dt_ = 0.0;  // next adaptive step
-  StateVector y_;    // the chains' blocks in order
+  // The state the implicit stepper last linearised at (its time and the state's size), kept across advanceTo.
+  // (None: NaN, after any change of the data.) advanceTo linearises again only when this is not the state it
+  // starts from: the same state and data give the same J bit for bit.
+  double linearised_t_ = std::numeric_limits<double>::quiet_NaN();
+  std::size_t linearised_size_ = 0;
+  long linearisations_ = 0;
+  void forgetLinearisation() { linearised_t_ = std::numeric_limits<double>::quiet_NaN(); }
+  StateVector y_;  // the chains' blocks in order
   StateVector dydt_;
   std::vector<char> slack_;  // elastic cable: each segment slack (for counting snaps)
   std::optional<PartingEvent> parting_event_;
