@@ -118,31 +118,14 @@ public:
   }
   bool commandAt(double t, double rudder, double elevator, double thrust, double differential = 0.0)
   {
-    forgetLinearisation();
-    const bool saturated = model_->endBody().command(data_.actuators, t, rudder, elevator, thrust);
+    const bool saturated = model_->endBody().command(changedData().actuators, t, rudder, elevator, thrust);
     return model_->endBody().commandDifferential(data_.actuators, t, differential) || saturated;
   }
   // Fins centred, no thrust, from time t [s].
-  void resetActuators(double t)
-  {
-    forgetLinearisation();
-    data_.actuators = model_->endBody().restingActuators(t);
-  }
-  void setCurrent(const Eigen::Vector3d& current_W)
-  {
-    forgetLinearisation();
-    tow_sim::setCurrent(data_, current_W);
-  }
-  void setCurrentProfile(const std::vector<CurrentSample>& profile)
-  {
-    forgetLinearisation();
-    tow_sim::setCurrentProfile(data_, profile);
-  }
-  void setWaveTime(double wave_time)
-  {
-    forgetLinearisation();
-    tow_sim::setWaveTime(data_, wave_time);
-  }
+  void resetActuators(double t) { changedData().actuators = model_->endBody().restingActuators(t); }
+  void setCurrent(const Eigen::Vector3d& current_W) { tow_sim::setCurrent(changedData(), current_W); }
+  void setCurrentProfile(const std::vector<CurrentSample>& p) { tow_sim::setCurrentProfile(changedData(), p); }
+  void setWaveTime(double wave_time) { tow_sim::setWaveTime(changedData(), wave_time); }
 
   // Winch: the commanded payout rate [m/s] (positive pays out), saturated at +-max_rate (returned).
   // Throws std::invalid_argument if it is not finite or the winch is disabled. The rate follows the
@@ -220,13 +203,13 @@ private:
   std::vector<Chain> chains_;  // at least one: vehicleSide()
   double t_ = 0.0;
   double dt_ = 0.0;  // next adaptive step
-  // The state the implicit stepper last linearised at (its time and the state's size), kept across advanceTo.
-  // (None: NaN, after any change of the data.) advanceTo linearises again only when this is not the state it
-  // starts from: the same state and data give the same J bit for bit.
+  // The time and state size the implicit stepper last linearised at (NaN: none, or the data changed since):
+  // advanceTo keeps that J when it starts there (docs/solver.md §7, "When J is taken").
   double linearised_t_ = std::numeric_limits<double>::quiet_NaN();
   std::size_t linearised_size_ = 0;
   long linearisations_ = 0;
   void forgetLinearisation() { linearised_t_ = std::numeric_limits<double>::quiet_NaN(); }
+  ChainData& changedData() { return forgetLinearisation(), data_; }
   StateVector y_;  // the chains' blocks in order
   StateVector dydt_;
   std::vector<char> slack_;  // elastic cable: each segment slack (for counting snaps)
