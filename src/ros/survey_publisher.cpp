@@ -44,16 +44,19 @@ sensor_msgs::NavSatFix toFix(const std_msgs::Header& header, const SurveyMeasure
   return fix;
 }
 
-// The fish's AHRS: REP-103 orientation, yaw about z then pitch about the body's y (positive nose down), roll 0;
-// no rates or accelerations (their covariances' first element -1).
+// The fish's AHRS: REP-103 orientation, yaw about z, then pitch about the body's y (positive nose down), then
+// roll about its x (positive starboard down); no rates or accelerations (their covariances' first element -1).
 sensor_msgs::Imu toImu(const std_msgs::Header& header, const SurveyMeasurement& m, const SurveySensorParams& params)
 {
   sensor_msgs::Imu imu;
   imu.header = header;
+  const double roll = std::isfinite(m.fish_roll) ? m.fish_roll : 0.0;
   imu.orientation = ros_conv::toQuaternion(Eigen::AngleAxisd(m.fish_heading, Eigen::Vector3d::UnitZ()) *
-                                           Eigen::AngleAxisd(m.fish_pitch, Eigen::Vector3d::UnitY()));
-  const double pitch = std::pow(params.ahrs_pitch_noise, 2), yaw = std::pow(params.ahrs.noise, 2);
-  imu.orientation_covariance = { pitch, 0.0, 0.0, 0.0, pitch, 0.0, 0.0, 0.0, yaw };
+                                           Eigen::AngleAxisd(m.fish_pitch, Eigen::Vector3d::UnitY()) *
+                                           Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()));
+  const double roll_var = std::pow(params.ahrs_roll_noise, 2), pitch = std::pow(params.ahrs_pitch_noise, 2),
+               yaw = std::pow(params.ahrs.noise, 2);
+  imu.orientation_covariance = { roll_var, 0.0, 0.0, 0.0, pitch, 0.0, 0.0, 0.0, yaw };
   imu.angular_velocity_covariance[0] = -1.0;
   imu.linear_acceleration_covariance[0] = -1.0;
   return imu;

@@ -191,7 +191,8 @@ std::string SurveyRows::pressure(const sensor_msgs::FluidPressure& msg)
                 &SurveyMeasurement::fish_depth);
 }
 
-// REP-103: yaw about z, then pitch about the body's y (nose down positive); roll is not used.
+// REP-103: yaw about z, then pitch about the body's y (nose down positive), then roll about its x (starboard
+// down positive).
 std::string SurveyRows::imu(const sensor_msgs::Imu& msg)
 {
   const auto& q = msg.orientation;
@@ -200,13 +201,17 @@ std::string SurveyRows::imu(const sensor_msgs::Imu& msg)
     return refuse(outOfRange("orientation: |q|", n, 0.99, 1.01, "-"));
   const Eigen::Matrix3d R = Eigen::Quaterniond(q.w, q.x, q.y, q.z).normalized().toRotationMatrix();
   const double yaw = std::atan2(R(1, 0), R(0, 0)), pitch = std::asin(std::clamp(-R(2, 0), -1.0, 1.0));
+  const double roll = std::atan2(R(2, 1), R(2, 2));
   if (msg.header.stamp.isZero())
     return refuse("header.stamp is zero: an attitude needs the instant it measures");
-  queue_.add(timeOf(msg.header.stamp), [&](SurveyMeasurement& m) { m.fish_heading = yaw, m.fish_pitch = pitch; });
+  queue_.add(timeOf(msg.header.stamp),
+             [&](SurveyMeasurement& m) { m.fish_heading = yaw, m.fish_pitch = pitch, m.fish_roll = roll; });
   // Its variances, where it gives them (sensor_msgs/Imu: zeros are "unknown").
-  const double pitch_var = msg.orientation_covariance[4], yaw_var = msg.orientation_covariance[8];
-  attitude_variance_ = Eigen::Vector2d(std::isfinite(pitch_var) && pitch_var > 0.0 ? pitch_var : NAN,
-                                       std::isfinite(yaw_var) && yaw_var > 0.0 ? yaw_var : NAN);
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    const double variance = msg.orientation_covariance[4 * axis];
+    attitude_variance_[axis] = std::isfinite(variance) && variance > 0.0 ? variance : NAN;
+  }
   return "";
 }
 

@@ -15,7 +15,7 @@ namespace tow_sim
 {
 namespace
 {
-constexpr double kUnknownVariance = 1e6;  // [rad^2] an angle the node does not know (roll; no AHRS yet)
+constexpr double kUnknownVariance = 1e6;  // [rad^2] an angle the node does not know (no AHRS yet)
 constexpr double kFreshAttitude = 5.0;    // [s] an AHRS attitude this old is still the pose's
 
 TowNavNodeParams readParams(const ros::NodeHandle& pnh)
@@ -151,7 +151,7 @@ void TowNavNode::restart(const ros::Time& now)
   rows_ = std::make_unique<SurveyRows>(surveyRowSettings(params_, nav_params_, config_));
   nav_ = std::make_unique<TowNav>(config_, nav_params_);
   last_ = TowNavEstimate();
-  fish_yaw_ = fish_pitch_ = fish_t_ = NAN;
+  fish_yaw_ = fish_pitch_ = fish_roll_ = fish_t_ = NAN;
   ++restarts_;
 }
 
@@ -166,7 +166,7 @@ void TowNavNode::tick(const ros::TimerEvent&)
   for (const SurveyMeasurement& row : rows_->release(now))
   {
     if (std::isfinite(row.fish_heading))
-      fish_yaw_ = row.fish_heading, fish_pitch_ = row.fish_pitch, fish_t_ = row.t;
+      fish_yaw_ = row.fish_heading, fish_pitch_ = row.fish_pitch, fish_roll_ = row.fish_roll, fish_t_ = row.t;
     last_ = nav_->update(row);
     ++rows_taken_;
     moved = true;
@@ -182,23 +182,26 @@ void TowNavNode::publish(const TowNavEstimate& e)
   std_msgs::Header header;
   header.stamp = rows_->stampOf(e.t);
   header.frame_id = params_.world_frame;
-  // The AHRS's attitude while fresh: yaw and pitch with its variances (unknown where it gives none); roll is not
-  // measured (unknown).
+  // The AHRS's attitude while fresh: yaw, pitch and roll with its variances (unknown where it gives none; a row
+  // without a roll: roll 0, unknown).
   const bool attitude = std::isfinite(fish_t_) && e.t - fish_t_ <= kFreshAttitude;
-  const Eigen::Vector2d variance = rows_->attitudeVariance();
-  const double pitch_var = attitude && std::isfinite(variance[0]) ? variance[0] : kUnknownVariance;
-  const double yaw_var = attitude && std::isfinite(variance[1]) ? variance[1] : kUnknownVariance;
+  const bool rolled = attitude && std::isfinite(fish_roll_);
+  const Eigen::Vector3d variance = rows_->attitudeVariance();
+  const double roll_var = rolled && std::isfinite(variance[0]) ? variance[0] : kUnknownVariance;
+  const double pitch_var = attitude && std::isfinite(variance[1]) ? variance[1] : kUnknownVariance;
+  const double yaw_var = attitude && std::isfinite(variance[2]) ? variance[2] : kUnknownVariance;
   geometry_msgs::PoseWithCovarianceStamped pose;
   pose.header = header;
   pose.pose.pose.position = ros_conv::toPoint(e.p_W);
-  pose.pose.pose.orientation =
-      ros_conv::toQuaternion(attitude ? Eigen::Quaterniond(Eigen::AngleAxisd(fish_yaw_, Eigen::Vector3d::UnitZ()) *
-                                                           Eigen::AngleAxisd(fish_pitch_, Eigen::Vector3d::UnitY()))
-                                      : Eigen::Quaterniond::Identity());
+  pose.pose.pose.orientation = ros_conv::toQuaternion(
+      attitude ? Eigen::Quaterniond(Eigen::AngleAxisd(fish_yaw_, Eigen::Vector3d::UnitZ()) *
+                                    Eigen::AngleAxisd(fish_pitch_, Eigen::Vector3d::UnitY()) *
+                                    Eigen::AngleAxisd(rolled ? fish_roll_ : 0.0, Eigen::Vector3d::UnitX()))
+               : Eigen::Quaterniond::Identity());
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c)
       pose.pose.covariance[6 * r + c] = e.covariance(r, c);
-  pose.pose.covariance[21] = kUnknownVariance;  // roll
+  pose.pose.covariance[21] = roll_var;
   pose.pose.covariance[28] = pitch_var;
   pose.pose.covariance[35] = yaw_var;
   pose_pub_.publish(pose);

@@ -182,6 +182,48 @@ TEST(SurveySensors, SamplesCarryTheRowsValuesAndTheUsblFixInTheShipFrame)
 }
 
 // tow_sim_node's reading of a configuration's sensors: section: absent, present, and a misspelt key named.
+// A rolling vehicle (vehicle.roll: free) rolled to port by the elevator's differential: the AHRS's roll is the
+// snapshots' roll (between them, linear) without noise, and its noise has the configured spread; the roll's
+// noise is the sample's third draw, which the AHRS drew and left unused before, so heading and pitch do not move.
+TEST(SurveySensors, TheAhrsReportsARollingVehiclesRoll)
+{
+  const std::string tow = R"(
+cable: {length: 150.0, segments: 10}
+vehicle: {roll: free, cb_above_cg: 0.05, roll_damping: 20.0, roll_added_inertia: 1.0}
+ship: {manoeuvres: [{type: straight, speed: 2.0, duration: 400.0}]}
+commands: [{t: 20.0, differential: 0.05}]
+simulation: {duration: 120.0, output_interval: 0.5, shape_interval: 120.0}
+)";
+  const SurveyRun exact = runSurvey(tow +
+                                    "sensors: {ahrs: {noise: 0, rate: 2.0}, ahrs_pitch_noise: 0, "
+                                    "ahrs_roll_noise: 0}\n");
+  const SurveyRun noisy = runSurvey(tow + "sensors: {ahrs: {noise: 0.01, rate: 2.0}, ahrs_roll_noise: 0.02}\n");
+  const SurveyRun level = runSurvey(tow + "sensors: {ahrs: {noise: 0.01, rate: 2.0}, ahrs_roll_noise: 0}\n");
+  double largest = 0.0;
+  std::vector<double> errors;
+  ASSERT_EQ(exact.rows.size(), noisy.rows.size());
+  ASSERT_EQ(noisy.rows.size(), level.rows.size());
+  for (size_t i = 0; i < exact.rows.size(); ++i)
+  {
+    const SurveyMeasurement &m = exact.rows[i], &n = noisy.rows[i], &l = level.rows[i];
+    if (std::isnan(m.fish_roll))
+      continue;
+    const auto at = exact.truth.find(m.t);  // the AHRS at 2 Hz on the outputs' times, no latency
+    ASSERT_NE(at, exact.truth.end()) << m.t;
+    EXPECT_NEAR(m.fish_roll, at->second.roll, 1e-12) << m.t;
+    largest = std::max(largest, std::abs(at->second.roll));
+    errors.push_back(n.fish_roll - at->second.roll);
+    EXPECT_EQ(n.fish_heading, l.fish_heading) << m.t;
+    EXPECT_EQ(n.fish_pitch, l.fish_pitch) << m.t;
+  }
+  EXPECT_GT(largest, 0.05);        // several degrees: the roll is seen, not a zero column
+  ASSERT_EQ(errors.size(), 241u);  // t = 0, 0.5, ... 120
+  double square = 0.0;
+  for (double e : errors)
+    square += e * e / errors.size();
+  EXPECT_NEAR(std::sqrt(square), 0.02, 0.02 * 4.0 / std::sqrt(2.0 * 241.0));
+}
+
 TEST(SurveySensors, TheNodesSensorsSectionIsReadOrRefusedByName)
 {
   EXPECT_FALSE(loadSensorParams(YAML::Load("cable: {length: 100.0}")).enabled);

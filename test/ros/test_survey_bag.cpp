@@ -100,7 +100,8 @@ void writeBag(const std::string& path, const std::vector<SurveyMeasurement>& row
     if (std::isfinite(r.fish_heading))
     {
       const Eigen::Quaterniond q(Eigen::AngleAxisd(r.fish_heading, Eigen::Vector3d::UnitZ()) *
-                                 Eigen::AngleAxisd(r.fish_pitch, Eigen::Vector3d::UnitY()));
+                                 Eigen::AngleAxisd(r.fish_pitch, Eigen::Vector3d::UnitY()) *
+                                 Eigen::AngleAxisd(r.fish_roll, Eigen::Vector3d::UnitX()));
       sensor_msgs::Imu imu;
       imu.orientation.x = q.x(), imu.orientation.y = q.y(), imu.orientation.z = q.z(), imu.orientation.w = q.w();
       put(bag, "survey/fish/imu", r.t, imu);

@@ -2,7 +2,7 @@
 // instant merge into a row released after `hold`; a USBL fix in the ship frame goes into the world frame with
 // the ship's fixes and headings on both sides of its stamp, even when the later ones come after it (the inverse
 // of what SurveySensors does, worked by hand here);
-// a pressure becomes a depth; an AHRS quaternion its yaw and pitch; bad and late messages are refused and
+// a pressure becomes a depth; an AHRS quaternion its yaw, pitch and roll; bad and late messages are refused and
 // counted.
 #include <gtest/gtest.h>
 
@@ -99,14 +99,20 @@ TEST(SurveyRows, PressureAndAttitude)
   sensor_msgs::Imu imu;
   imu.header.stamp = ros::Time(100.0);
   const Eigen::Quaterniond q(Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitZ()) *
-                             Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitY()));  // yaw 0.7, 0.1 nose down
+                             Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitY()) *
+                             Eigen::AngleAxisd(-0.2, Eigen::Vector3d::UnitX()));  // yaw 0.7, 0.1 nose down, port down
   imu.orientation.x = q.x(), imu.orientation.y = q.y(), imu.orientation.z = q.z(), imu.orientation.w = q.w();
+  imu.orientation_covariance = { 1e-4, 0.0, 0.0, 0.0, 2e-4, 0.0, 0.0, 0.0, 0.0 };  // yaw's variance unknown
   EXPECT_EQ(rows.imu(imu), "");
+  EXPECT_EQ(rows.attitudeVariance()[0], 1e-4);  // roll
+  EXPECT_EQ(rows.attitudeVariance()[1], 2e-4);  // pitch
+  EXPECT_TRUE(std::isnan(rows.attitudeVariance()[2]));
   const std::vector<SurveyMeasurement> out = rows.releaseAll();
   ASSERT_EQ(out.size(), 1u);
   EXPECT_NEAR(out[0].fish_depth, 40.0, 1e-9);
   EXPECT_NEAR(out[0].fish_heading, 0.7, 1e-12);
   EXPECT_NEAR(out[0].fish_pitch, 0.1, 1e-12);
+  EXPECT_NEAR(out[0].fish_roll, -0.2, 1e-12);
 }
 
 TEST(SurveyRows, BadAndLateMessagesAreRefusedAndCounted)

@@ -80,8 +80,8 @@ public:
   long refused() const { return refused_; }    // unplaced USBL fixes included
   long unplaced() const { return unplaced_; }  // USBL fixes without ship fixes and headings around their stamps
   long late() const { return queue_.late(); }
-  // [rad^2] the latest AHRS message's pitch and yaw variances (NaN where it gave none).
-  const Eigen::Vector2d& attitudeVariance() const { return attitude_variance_; }
+  // [rad^2] the latest AHRS message's roll, pitch and yaw variances (NaN where it gave none).
+  const Eigen::Vector3d& attitudeVariance() const { return attitude_variance_; }
   size_t held() const { return queue_.held() + usbl_.size(); }
   // [s] how far the newest stamp is ahead of `now` (large: the stamps and the clock are not the same clock).
   double ahead(const ros::Time& now) const;
@@ -109,7 +109,7 @@ private:
   std::vector<PendingUsbl> usbl_;                             // USBL fixes whose rows are not yet due
   std::deque<Eigen::Vector3d> fixes_, headings_;  // (t, x, y) and (t, yaw, 0) of the last minute, for the USBL
   long refused_ = 0, unplaced_ = 0;
-  Eigen::Vector2d attitude_variance_ = Eigen::Vector2d::Constant(NAN);
+  Eigen::Vector3d attitude_variance_ = Eigen::Vector3d::Constant(NAN);
 };
 
 }  // namespace tow_sim

@@ -54,10 +54,11 @@ private:
   std::unique_ptr<SurveyRows> rows_;
   std::unique_ptr<TowNav> nav_;
   TowNavEstimate last_;
-  double fish_yaw_ = NAN, fish_pitch_ = NAN, fish_t_ = NAN;  // the AHRS's latest (the pose's orientation), its t
-  ros::Time last_now_;                                       // the clock at the previous tick
-  std::map<std::string, ros::WallTime> warned_;              // when each topic's refusal was last logged
-  long restarts_ = 0;                                        // after the clock went back
+  // The AHRS's latest (the pose's orientation) and its t.
+  double fish_yaw_ = NAN, fish_pitch_ = NAN, fish_roll_ = NAN, fish_t_ = NAN;
+  ros::Time last_now_;                           // the clock at the previous tick
+  std::map<std::string, ros::WallTime> warned_;  // when each topic's refusal was last logged
+  long restarts_ = 0;                            // after the clock went back
   long rows_taken_ = 0;
   double cpu_ = 0.0, cpu_since_ = 0.0;  // [s] the ticks' thread CPU time, and the wall time it was reset at
   ros::Publisher pose_pub_, fix_pub_, layback_pub_, cross_track_pub_;

@@ -6,14 +6,14 @@ namespace tow_sim
 {
 std::array<double*, SurveyMeasurement::kColumns> SurveyMeasurement::fields()
 {
-  return { &t,          &ship_x,  &ship_y, &ship_heading, &ship_speed, &cable_out,    &fish_depth, &fish_heading,
-           &fish_pitch, &tension, &usbl_x, &usbl_y,       &usbl_z,     &fish_altitude };
+  return { &t,          &ship_x,  &ship_y, &ship_heading, &ship_speed, &cable_out,     &fish_depth, &fish_heading,
+           &fish_pitch, &tension, &usbl_x, &usbl_y,       &usbl_z,     &fish_altitude, &fish_roll };
 }
 
 std::array<double, SurveyMeasurement::kColumns> SurveyMeasurement::values() const
 {
-  return { t,          ship_x,  ship_y, ship_heading, ship_speed, cable_out,    fish_depth, fish_heading,
-           fish_pitch, tension, usbl_x, usbl_y,       usbl_z,     fish_altitude };
+  return { t,          ship_x,  ship_y, ship_heading, ship_speed, cable_out,     fish_depth, fish_heading,
+           fish_pitch, tension, usbl_x, usbl_y,       usbl_z,     fish_altitude, fish_roll };
 }
 
 bool SurveyMeasurement::empty() const
@@ -29,7 +29,7 @@ const std::string& surveyMeasurementHeader()
 {
   static const std::string header =
       "t,ship_x,ship_y,ship_heading,ship_speed,cable_out,fish_depth,fish_heading,"
-      "fish_pitch,tension,usbl_x,usbl_y,usbl_z,fish_altitude";
+      "fish_pitch,tension,usbl_x,usbl_y,usbl_z,fish_altitude,fish_roll";
   return header;
 }
 

@@ -54,6 +54,7 @@ const ParamTable<SurveySensorParams>& surveySensorParams()
           .nest("depth", &P::depth, channelTable("m"))
           .nest("ahrs", &P::ahrs, channelTable("rad"))
           .number("ahrs_pitch_noise", &P::ahrs_pitch_noise, "rad", 0.0, 1.0, kClosed, "the AHRS pitch's noise")
+          .number("ahrs_roll_noise", &P::ahrs_roll_noise, "rad", 0.0, 1.0, kClosed, "the AHRS roll's noise")
           .nest("altimeter", &P::altimeter, channelTable("m"))
           .nest("usbl", &P::usbl, channelTable("m"))
           .number("usbl_range_noise", &P::usbl_range_noise, "-", 0.0, 1.0, kClosed,
@@ -104,6 +105,7 @@ SurveySensors::Truth SurveySensors::truthOf(const TowSnapshot& s)
   r.fish_z = s.vehicle.p_cg_W.z();
   r.fish_heading = s.yaw;
   r.fish_pitch = s.pitch;
+  r.fish_roll = s.roll;
   r.altitude = s.seabed_present ? s.vehicle_altitude : std::numeric_limits<double>::quiet_NaN();
   return r;
 }
@@ -127,6 +129,7 @@ SurveySensors::Truth SurveySensors::between(const Truth& a, const Truth& b, doub
   r.fish_z = lerp(a.fish_z, b.fish_z);
   r.fish_heading = angle(a.fish_heading, b.fish_heading);
   r.fish_pitch = lerp(a.fish_pitch, b.fish_pitch);
+  r.fish_roll = lerp(a.fish_roll, b.fish_roll);
   r.altitude = lerp(a.altitude, b.altitude);
   return r;
 }
@@ -207,6 +210,7 @@ void SurveySensors::sample(int c, const Truth& truth)
     case SensorKind::kAhrs:
       m.fish_heading = wrapAngle(truth.fish_heading + ch.bias + ch.noise * e1);
       m.fish_pitch = truth.fish_pitch + params_.ahrs_pitch_noise * e2;
+      m.fish_roll = wrapAngle(truth.fish_roll + params_.ahrs_roll_noise * e3);  // e3: drawn before, unused then
       break;
     case SensorKind::kAltimeter:
       m.fish_altitude = truth.altitude + ch.bias + ch.noise * e1;

@@ -27,8 +27,9 @@ struct SurveyMeasurement
   double usbl_y = kNone;         // [m]
   double usbl_z = kNone;         // [m] (z up: minus the depth)
   double fish_altitude = kNone;  // [m] the fish's altimeter (above the seabed)
+  double fish_roll = kNone;      // [rad] the fish's AHRS roll, REP-103: starboard down positive
 
-  static constexpr int kColumns = 14;
+  static constexpr int kColumns = 15;
   // The fields in column order (t first), for reading and writing rows.
   std::array<double*, kColumns> fields();
   std::array<double, kColumns> values() const;
@@ -37,7 +38,7 @@ struct SurveyMeasurement
 };
 
 // "t,ship_x,ship_y,ship_heading,ship_speed,cable_out,fish_depth,fish_heading,fish_pitch,tension,usbl_x,usbl_y,
-// usbl_z,fish_altitude"
+// usbl_z,fish_altitude,fish_roll"
 const std::string& surveyMeasurementHeader();
 // The row (no line break): numbers to `precision` significant digits, an empty cell for NaN.
 std::string surveyMeasurementRow(const SurveyMeasurement& m, int precision = 10);

@@ -45,6 +45,7 @@ struct SurveySensorParams
   SensorChannel depth{ true, 1.0, 0.1, 0.0, 0.0, 0.0, 5 };          // [m] pressure depth
   SensorChannel ahrs{ true, 10.0, 0.017, 0.0, 0.0, 0.0, 6 };        // [rad] the fish's heading, 1 deg
   double ahrs_pitch_noise = 0.0035;                                 // [rad] its pitch, 0.2 deg
+  double ahrs_roll_noise = 0.0035;                                  // [rad] its roll, 0.2 deg
   SensorChannel altimeter{ true, 1.0, 0.1, 0.0, 0.0, 0.0, 7 };      // [m] (only with a seabed)
   SensorChannel usbl{ true, 0.2, 0.5, 0.0, 1.0, 0.1, 8 };           // [m] floor of the noise per axis
   double usbl_range_noise = 0.005;  // [-] the noise's part proportional to the slant range, per axis
@@ -112,7 +113,8 @@ public:
     double ship_x = 0.0, ship_y = 0.0, ship_heading = 0.0, ship_speed = 0.0;
     double cable_out = 0.0, tension = 0.0;
     double fish_x = 0.0, fish_y = 0.0, fish_z = 0.0, fish_heading = 0.0, fish_pitch = 0.0;
-    double altitude = 0.0;  // NaN without a seabed
+    double fish_roll = 0.0;  // [rad] REP-103, 0 unless the vehicle rolls (vehicle.roll: free)
+    double altitude = 0.0;   // NaN without a seabed
   };
   static Truth truthOf(const TowSnapshot& s);
   // Linear between a and b at t (headings through the shorter way round).
