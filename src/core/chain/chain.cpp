@@ -76,12 +76,19 @@ void Chain::rollDerivative(const ChainModel& model, const ChainData& data, doubl
 {
   const StateLayout& L = layout_;
   const int e = L.joints - 1;
-  const Eigen::Vector3d a_f =
-      e > 0 ? Eigen::Vector3d(a.col(e - 1)) : (L.free ? Eigen::Vector3d(L.freeVelocity(dydt)) : ship.a_W);
   const Eigen::Vector2d rates =
-      model.endBody().rollRates(t, elementKinematics(e, ship, y), data.environment, data.actuators, a_f, a.col(e));
+      model.endBody().rollRates(t, elementKinematics(e, ship, y), data.environment, data.actuators,
+                                endForwardAcceleration(ship, a, dydt), a.col(e));
   L.rollAngle(dydt) = rates.x();
   L.rollRate(dydt) = rates.y();
+}
+
+Eigen::Vector3d Chain::endForwardAcceleration(const ShipEndState& ship, const Eigen::Ref<const Eigen::Matrix3Xd>& a,
+                                              const StateVector& dydt) const
+{
+  const StateLayout& L = layout_;
+  const int e = L.joints - 1;
+  return e > 0 ? Eigen::Vector3d(a.col(e - 1)) : (L.free ? Eigen::Vector3d(L.freeVelocity(dydt)) : ship.a_W);
 }
 
 // docs/solver.md (S29): d(dp/dt)/dphi and d(dp/dt)/dp by central differences, the joints' accelerations held.
@@ -92,8 +99,7 @@ Eigen::Vector2d Chain::spinAccelerationDerivatives(const ChainModel& model, cons
   const StateLayout& L = layout_;
   const int e = L.joints - 1;
   const auto a = L.velocities(dydt);
-  const Eigen::Vector3d a_f =
-      e > 0 ? Eigen::Vector3d(a.col(e - 1)) : (L.free ? Eigen::Vector3d(L.freeVelocity(dydt)) : ship.a_W);
+  const Eigen::Vector3d a_f = endForwardAcceleration(ship, a, dydt);
   const ElementKinematics k = elementKinematics(e, ship, y);
   auto spin = [&](double droll, double drate)
   {

@@ -58,6 +58,23 @@ std::function<double(const VehicleParams&)> inertiaGetter(int i, int j)
 {
   return [i, j](const VehicleParams& v) { return v.inertia_B(i, j); };
 }
+// (P59)'s spin axis e = [0; x_b] (x_b = -s), M e and e^T M e: the Schur complement that eliminates the spin's
+// acceleration, and the spin's acceleration from the joints' (Vehicle::dynamics, Vehicle::rollRates).
+struct SpinAxis
+{
+  Vector6d e, Me;
+  double m_ee;
+};
+
+SpinAxis spinAxis(const Eigen::Vector3d& s, const Matrix6d& mass)
+{
+  SpinAxis a;
+  a.e << Eigen::Vector3d::Zero(), -s;
+  a.Me = mass * a.e;
+  a.m_ee = a.e.dot(a.Me);
+  return a;
+}
+
 std::function<void(VehicleParams&, double)> inertiaSetter(int i, int j)
 {
   return [i, j](VehicleParams& v, double value) { v.inertia_B(i, j) = v.inertia_B(j, i) = value; };
@@ -273,8 +290,18 @@ Vehicle::Loads Vehicle::loads(double t, const ElementKinematics& k, const Enviro
 
 BodyFrame Vehicle::frameAt(const ElementKinematics& k, const Eigen::Vector3d& v_cg_through_water) const
 {
-  const BodyFrame level = bodyFrame(k.s, headingHint(v_cg_through_water));
+  return rolled(bodyFrame(k.s, headingHint(v_cg_through_water)), k);
+}
+
+BodyFrame Vehicle::rolled(const BodyFrame& level, const ElementKinematics& k) const
+{
   return rolls() ? rolledFrame(level, k.roll) : level;
+}
+
+// (P57): rolling, the body also spins at p about x_b.
+Eigen::Vector3d Vehicle::angularVelocity(const ElementKinematics& k, const BodyFrame& frame) const
+{
+  return rolls() ? Eigen::Vector3d(k.omega + k.roll_rate * frame.x) : k.omega;
 }
 
 void Vehicle::dynamics(double t, const ElementKinematics& k, const Environment& env, const Actuators& actuators,
@@ -286,14 +313,12 @@ void Vehicle::dynamics(double t, const ElementKinematics& k, const Environment& 
   // (P59): domega/dt = S (a_a - a_f) + (dp/dt) x_b - p ds/dt. The known part -p ds/dt moves to the wrench; the
   // moment equation along x_b (which no tension reaches: the bail is on the axis) gives dp/dt, and its
   // elimination leaves M' = M - M e e^T M / (e^T M e), w' = w - M e (e^T w) / (e^T M e), e = [0; x_b].
-  Vector6d e, bias;
-  e << Eigen::Vector3d::Zero(), -k.s;
+  Vector6d bias;
   bias << Eigen::Vector3d::Zero(), -k.roll_rate * k.s_dot;
   out.wrench -= out.mass * bias;
-  const Vector6d Me = out.mass * e;
-  const double m_ee = e.dot(Me);
-  out.wrench -= Me * (e.dot(out.wrench) / m_ee);
-  out.mass -= Me * Me.transpose() / m_ee;
+  const SpinAxis axis = spinAxis(k.s, out.mass);
+  out.wrench -= axis.Me * (axis.e.dot(out.wrench) / axis.m_ee);
+  out.mass -= axis.Me * axis.Me.transpose() / axis.m_ee;
 }
 
 Eigen::Vector2d Vehicle::rollRates(double t, const ElementKinematics& k, const Environment& env,
@@ -304,14 +329,13 @@ Eigen::Vector2d Vehicle::rollRates(double t, const ElementKinematics& k, const E
     return Eigen::Vector2d::Zero();
   BodyDynamics full;
   fullDynamics(t, k, env, actuators, full);
-  Vector6d e, joints;
-  e << Eigen::Vector3d::Zero(), -k.s;
+  Vector6d joints;
   joints << a_f, a_a;
   Vector6d acceleration = jointMap(k.s, k.length, full.cg_fraction) * joints;  // [a_G; S (a_a - a_f)]
   acceleration.tail<3>() -= k.roll_rate * k.s_dot;
-  const Vector6d Me = full.mass * e;
-  const double spin_acceleration = (e.dot(full.wrench) - Me.dot(acceleration)) / e.dot(Me);  // (P59)
-  return { k.roll_rate - zeroRollFrameSpin(k.s, k.s_dot), spin_acceleration };               // (P58)
+  const SpinAxis axis = spinAxis(k.s, full.mass);
+  const double spin_acceleration = (axis.e.dot(full.wrench) - axis.Me.dot(acceleration)) / axis.m_ee;  // (P59)
+  return { k.roll_rate - zeroRollFrameSpin(k.s, k.s_dot), spin_acceleration };                         // (P58)
 }
 
 void Vehicle::fullDynamics(double t, const ElementKinematics& k, const Environment& env, const Actuators& actuators,
@@ -323,8 +347,7 @@ void Vehicle::fullDynamics(double t, const ElementKinematics& k, const Environme
   const Eigen::Vector3d& current = flow.velocity_W;
   const BodyFrame frame = frameAt(k, v_cg - current);
   const Eigen::Matrix3d R = frame.rotation();
-  // (P57): rolling, the body also spins at p about x_b.
-  const Eigen::Vector3d omega = rolls() ? Eigen::Vector3d(k.omega + k.roll_rate * frame.x) : k.omega;
+  const Eigen::Vector3d omega = angularVelocity(k, frame);
   const Eigen::Matrix3d I3 = Eigen::Matrix3d::Identity();
   const Eigen::Matrix3d inertia_W = R * p_.inertia_B * R.transpose();
   out.cg_fraction = gamma;
@@ -382,11 +405,11 @@ VehicleOutputs Vehicle::outputs(double t, const ElementKinematics& k, const Envi
   o.p_cg_W = k.pointAt(gamma);
   o.v_cg_W = k.velocityAt(gamma);
   const BodyFrame level = bodyFrame(k.s, headingHint(o.v_cg_W - env.flowAt(o.p_cg_W, t).velocity_W));
-  const BodyFrame frame = rolls() ? rolledFrame(level, k.roll) : level;
+  const BodyFrame frame = rolled(level, k);
   const Eigen::Matrix3d R = frame.rotation();
   o.q_WB = Eigen::Quaterniond(R).normalized();
   o.v_cg_B = R.transpose() * o.v_cg_W;
-  o.omega_W = rolls() ? Eigen::Vector3d(k.omega + k.roll_rate * frame.x) : k.omega;
+  o.omega_W = angularVelocity(k, frame);
   o.omega_B = R.transpose() * o.omega_W;
   o.roll = rolls() ? std::remainder(k.roll, 2.0 * kPi) : 0.0;
   o.depth = -o.p_cg_W.z();

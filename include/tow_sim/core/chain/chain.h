@@ -84,6 +84,10 @@ private:
   // physics.md §5b: a rolling end body's roll angle and spin rates into dydt, from the joints' accelerations a.
   void rollDerivative(const ChainModel& model, const ChainData& data, double t, const ShipEndState& ship,
                       const StateVector& y, const Eigen::Ref<const Eigen::Matrix3Xd>& a, StateVector& dydt) const;
+  // The end element's forward joint's acceleration: a joint's of a (the chain's own), the ship's, or a free first
+  // joint's (in dydt).
+  Eigen::Vector3d endForwardAcceleration(const ShipEndState& ship, const Eigen::Ref<const Eigen::Matrix3Xd>& a,
+                                         const StateVector& dydt) const;
   // The seabed's force on a free first joint (the contact of half the first segment's length, as each
   // segment's aft joint carries: ChainModel::forEachContact); zero without a seabed or for the end body alone.
   Eigen::Vector3d freeEndContact(const ChainModel& model, const ChainGeometry& geometry, const ShipEndState& end) const;

@@ -182,6 +182,10 @@ private:
                     BodyDynamics& out) const;
   // The body frame at k's axis and roll; the flow's heading hint from the CG's velocity through the water.
   BodyFrame frameAt(const ElementKinematics& k, const Eigen::Vector3d& v_cg_through_water) const;
+  // The level (zero-roll) frame turned by the roll, when the vehicle rolls (physics.md (P57)).
+  BodyFrame rolled(const BodyFrame& level, const ElementKinematics& k) const;
+  // omega = s x ds/dt, plus p x_b when it rolls (P57).
+  Eigen::Vector3d angularVelocity(const ElementKinematics& k, const BodyFrame& frame) const;
 
   VehicleParams p_;
   double smoothing_speed_;
