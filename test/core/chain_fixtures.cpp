@@ -1,6 +1,7 @@
 #include "core/chain_fixtures.h"
 
 #include <Eigen/Geometry>
+#include <cmath>
 #include <cstdlib>
 #include <stdexcept>
 #include <string>
@@ -9,6 +10,34 @@ namespace tow_sim
 {
 namespace test
 {
+std::shared_ptr<ShipHistory> steamingShip(const Eigen::Vector2d& start, double heading, int seconds)
+{
+  auto ship = std::make_shared<ShipHistory>(1.0, 1000);
+  const Eigen::Vector3d u(std::cos(heading), std::sin(heading), 0.0);
+  for (int i = 0; i <= seconds; ++i)
+  {
+    const Eigen::Vector3d p = Eigen::Vector3d(start.x(), start.y(), 0.0) + 2.0 * i * u;
+    ShipPose pose;
+    pose.x = p.x();
+    pose.y = p.y();
+    pose.heading = heading;
+    pose.speed = 2.0;
+    ship->add(i, p, 2.0 * u, pose);
+  }
+  return ship;
+}
+
+VehicleOutputs VehicleTow::out() const
+{
+  return vehicle->outputs(sim->time(), sim->elementKinematics(sim->geometry().segments), sim->data().environment,
+                          sim->data().actuators);
+}
+
+double VehicleTow::bailTension() const
+{
+  return sim->tensions().col(sim->geometry().segments).norm();
+}
+
 NumericsParams suiteNumerics()
 {
   NumericsParams n;

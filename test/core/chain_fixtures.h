@@ -6,7 +6,9 @@
 
 #include "tow_sim/core/constants.h"
 #include "tow_sim/core/integration/simulator.h"
+#include "tow_sim/core/run/ship_track.h"
 #include "tow_sim/core/run/simulation_config.h"
+#include "tow_sim/core/vehicle/vehicle.h"
 
 namespace tow_sim
 {
@@ -16,6 +18,20 @@ namespace test
 // defaults, with the stepper TOW_SIM_TEST_STEPPER names (dopri5, rk4, implicit, implicit_fixed) when
 // set. CTest and catkin run those suites a second time with it set to implicit.
 NumericsParams suiteNumerics();
+
+// A ship steaming at 2 m/s along `heading` [rad, ENU] from `start` [m], sampled each second for `seconds` s.
+std::shared_ptr<ShipHistory> steamingShip(const Eigen::Vector2d& start, double heading, int seconds);
+
+// A vehicle's chain in a Simulator, for the tests that drive the simulator directly.
+struct VehicleTow
+{
+  std::shared_ptr<Vehicle> vehicle;
+  std::shared_ptr<ChainModel> model;
+  std::unique_ptr<Simulator> sim;
+
+  VehicleOutputs out() const;  // the vehicle's outputs at the simulator's state
+  double bailTension() const;  // [N] |T| at the bail
+};
 
 inline std::shared_ptr<ChainModel> makeModel(const CableParams& cable, const EndElementParams& end,
                                              const Environment& env, const NumericsParams& num = NumericsParams(),

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "core/chain_fixtures.h"
 #include "temp_file.h"
 #include "tow_sim/core/constants.h"
 #include "tow_sim/core/io/saved_state.h"
@@ -75,7 +76,7 @@ void expectBitIdenticalContinuation(Scenario sc, double t_save, const std::strin
   sc.save_state_at = { t_save };
   const Output whole = run(sc);
   ASSERT_EQ(whole.states.count(t_save), 1u) << label;
-  const std::string path = test::writeTempFile("saved_" + label + ".txt", runStateText(whole.states.at(t_save)));
+  const std::string path = ::test::writeTempFile("saved_" + label + ".txt", runStateText(whole.states.at(t_save)));
   Scenario restored = sc;
   restored.initial.type = InitialShape::Type::kFile;
   restored.initial.path = path;
@@ -199,14 +200,7 @@ TEST(SavedState, AStateThatDoesNotFitTheRunIsRefusedWithNothingChanged)
   sc.save_state_at = { 10.0 };
   const RunState saved = run(sc).states.at(10.0);
 
-  auto ship = std::make_shared<ShipHistory>(1.0, 1000);
-  for (int i = 0; i <= 100; ++i)
-  {
-    ShipPose pose;
-    pose.x = 2.0 * i;
-    pose.speed = 2.0;
-    ship->add(i, Eigen::Vector3d(2.0 * i, 0.0, 0.0), Eigen::Vector3d(2.0, 0.0, 0.0), pose);
-  }
+  auto ship = test::steamingShip(Eigen::Vector2d::Zero(), 0.0, 100);
   SimulationConfig other = sc.config;
   other.cable.segments = 20;  // the saved state has 50
   TowRun target(other, ship);
@@ -292,7 +286,7 @@ TEST(SavedState, AStateFromAnotherShipPoseIsPlacedBehindTheScenariosShip)
   elsewhere.save_state_at.clear();
   elsewhere.start_position += Eigen::Vector2d(1000.0, -500.0);
   elsewhere.initial.type = InitialShape::Type::kFile;
-  elsewhere.initial.path = test::writeTempFile("saved_elsewhere.txt", runStateText(whole.states.at(60.0)));
+  elsewhere.initial.path = ::test::writeTempFile("saved_elsewhere.txt", runStateText(whole.states.at(60.0)));
   std::ostringstream series, shapes;
   BatchResult result;
   runScenario(elsewhere, series, shapes, result);
@@ -313,24 +307,6 @@ TEST(SavedState, AStateFromAnotherShipPoseIsPlacedBehindTheScenariosShip)
   EXPECT_NEAR(b[5] - b[1], a[5] - a[1], 1e-6);  // vehicle x relative to the ship
 }
 
-// A ship steaming at 2 m/s along `heading` from `start`, sampled each second.
-std::shared_ptr<ShipHistory> steaming(const Eigen::Vector2d& start, double heading)
-{
-  auto ship = std::make_shared<ShipHistory>(1.0, 1000);
-  const Eigen::Vector3d u(std::cos(heading), std::sin(heading), 0.0);
-  for (int i = 0; i <= 400; ++i)
-  {
-    const Eigen::Vector3d p = Eigen::Vector3d(start.x(), start.y(), 0.0) + 2.0 * i * u;
-    ShipPose pose;
-    pose.x = p.x();
-    pose.y = p.y();
-    pose.heading = heading;
-    pose.speed = 2.0;
-    ship->add(i, p, 2.0 * u, pose);
-  }
-  return ship;
-}
-
 TEST(SavedState, ARelocatedStateTowsOnAsTheOriginalTurned)
 {
   // A transient (an elevator step 2 s before the save), so the continuation is not a steady tow.
@@ -339,7 +315,7 @@ TEST(SavedState, ARelocatedStateTowsOnAsTheOriginalTurned)
   CommandEvent step;
   step.t = 38.0;
   step.elevator = 0.3;
-  TowRun original(c, steaming(Eigen::Vector2d::Zero(), 0.0));
+  TowRun original(c, test::steamingShip(Eigen::Vector2d::Zero(), 0.0, 400));
   original.schedule({ step });
   original.start(0.0);
   original.advanceTo(40.0);
@@ -347,7 +323,7 @@ TEST(SavedState, ARelocatedStateTowsOnAsTheOriginalTurned)
   const double depth_at_save = original.snapshot().depth;
 
   const double heading = 2.0;  // rad: the other ship steams north-west from elsewhere, 60 s later
-  auto other_ship = steaming(Eigen::Vector2d(500.0, -300.0), heading);
+  auto other_ship = test::steamingShip(Eigen::Vector2d(500.0, -300.0), heading, 400);
   TowRun moved(c, other_ship);
   moved.restore(relocate(saved, 100.0, other_ship->towPoint(100.0), heading));
   EXPECT_EQ(moved.time(), 100.0);

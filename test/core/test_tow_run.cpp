@@ -7,6 +7,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "core/chain_fixtures.h"
 #include "tow_sim/core/constants.h"
 #include "tow_sim/core/run/tow_run.h"
 
@@ -17,16 +18,7 @@ namespace
 // A ship at 2 m/s along +x, sampled every second for 200 s.
 std::shared_ptr<ShipHistory> straightShip()
 {
-  auto ship = std::make_shared<ShipHistory>(1.0, 1000);
-  for (int i = 0; i <= 200; ++i)
-  {
-    const double t = i;
-    ShipPose pose;
-    pose.x = 2.0 * t;
-    pose.speed = 2.0;
-    ship->add(t, Eigen::Vector3d(2.0 * t, 0.0, 0.0), Eigen::Vector3d(2.0, 0.0, 0.0), pose);
-  }
-  return ship;
+  return test::steamingShip(Eigen::Vector2d::Zero(), 0.0, 200);
 }
 
 SimulationConfig smallConfig()

@@ -18,26 +18,16 @@ namespace tow_sim
 {
 namespace
 {
-struct Tow
-{
-  std::shared_ptr<Vehicle> vehicle;
-  std::shared_ptr<ChainModel> model;
-  std::unique_ptr<Simulator> sim;
+using Tow = test::VehicleTow;
 
-  VehicleOutputs out() const
-  {
-    return vehicle->outputs(sim->time(), sim->elementKinematics(sim->geometry().segments), sim->data().environment,
-                            sim->data().actuators);
-  }
-  // Starts the vehicle rolled by `roll` [rad] and spinning at `rate` [rad/s], through a saved state.
-  void setRoll(double roll, double rate)
-  {
-    SimulatorState s = sim->saveState();
-    s.y[s.y.size() - 2] = roll;  // a rolling vehicle's two states come last (StateLayout)
-    s.y[s.y.size() - 1] = rate;
-    sim->restoreState(s);
-  }
-};
+// Starts the vehicle rolled by `roll` [rad] and spinning at `rate` [rad/s], through a saved state.
+void setRoll(Tow& tow, double roll, double rate)
+{
+  SimulatorState s = tow.sim->saveState();
+  s.y[s.y.size() - 2] = roll;  // a rolling vehicle's two states come last (StateLayout)
+  s.y[s.y.size() - 1] = rate;
+  tow.sim->restoreState(s);
+}
 
 // 2 m/s along +x until t0 [s], then round a circle of radius r [m] to port.
 ShipMotion turningShip(double t0, double r)
@@ -111,7 +101,7 @@ TEST_P(RollPeriod, IsTheMetacentricClosedForm)
   const VehicleParams p = rollingVehicle();
   Tow tow = steadyTow(p, GetParam());
   tow.sim->advanceTo(30.0);
-  tow.setRoll(0.05, 0.0);
+  setRoll(tow, 0.05, 0.0);
   const double dt = 0.005;
   std::vector<double> roll;
   for (int i = 0; i <= 1600; ++i)
@@ -156,7 +146,7 @@ TEST(VehicleRoll, InStillWaterItSwingsOnItsMetacentricHeight)
   const int tail = cable.segments;
   start.x.col(tail) = start.x.col(tail - 1) - p.tail_from_bail * Eigen::Vector3d::UnitX();  // level, nose to +x
   tow.sim->reset(0.0, start);
-  tow.setRoll(0.05, 0.0);
+  setRoll(tow, 0.05, 0.0);
   const double dt = 0.005;
   std::vector<double> roll;
   for (int i = 1; i <= 1600; ++i)
@@ -266,14 +256,7 @@ TEST(VehicleRoll, TheAutopilotsRollHoldStiffensTheRollByItsGain)
   c.cable.length = 100.0;
   c.cable.segments = 20;
   c.vehicle = rollingVehicle();
-  auto ship = std::make_shared<ShipHistory>(1.0, 1000);
-  for (int i = 0; i <= 100; ++i)
-  {
-    ShipPose pose;
-    pose.x = 2.0 * i;
-    pose.speed = 2.0;
-    ship->add(i, Eigen::Vector3d(2.0 * i, 0.0, 0.0), Eigen::Vector3d(2.0, 0.0, 0.0), pose);
-  }
+  auto ship = test::steamingShip(Eigen::Vector2d::Zero(), 0.0, 100);
   AutopilotLoop loop;
   loop.enabled = true;
   loop.rate = 200.0;
@@ -367,7 +350,7 @@ TEST(VehicleRoll, AReleasedChainWithARollingVehicleKeepsItsEnergyInVacuum)
   for (int j = 0; j < n; ++j)
     start.v.col(j) = Eigen::Vector3d(0.0, 0.3 * j / n, 0.0);
   tow.sim->reset(0.0, start);
-  tow.setRoll(0.3, 0.8);
+  setRoll(tow, 0.3, 0.8);
   auto energy = [&]
   {
     const ChainState st = tow.sim->state();
@@ -417,7 +400,7 @@ TEST(VehicleRoll, TheRollSurvivesARemeshASavedStateAndAParting)
     winch.max_length = 300.0;
     winch.segment_max_fraction = split_above;
     keep = std::make_unique<Tow>(steadyTow(rollingVehicle(), StepperType::kImplicit, nullptr, winch));
-    keep->setRoll(0.05, 0.0);
+    setRoll(*keep, 0.05, 0.0);
     keep->sim->setWinchCommand(1.5);
     double late = 0.0;
     for (int i = 1; i <= 2000; ++i)

@@ -18,19 +18,7 @@ namespace
 {
 constexpr double kDeg = kPi / 180.0;
 
-struct Tow
-{
-  std::shared_ptr<Vehicle> vehicle;
-  std::shared_ptr<ChainModel> model;
-  std::unique_ptr<Simulator> sim;
-
-  VehicleOutputs out() const
-  {
-    return vehicle->outputs(sim->time(), sim->elementKinematics(model->segments()), sim->data().environment,
-                            sim->data().actuators);
-  }
-  double bailTension() const { return sim->tensions().col(model->segments()).norm(); }
-};
+using Tow = test::VehicleTow;
 
 Tow makeTow(const VehicleParams& p, double speed, const Eigen::Vector3d& start_direction = Eigen::Vector3d(-1, 0, -0.5),
             double cable_length = 100.0, int segments = 20)

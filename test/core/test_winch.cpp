@@ -17,12 +17,7 @@ namespace tow_sim
 {
 namespace
 {
-struct Tow
-{
-  std::shared_ptr<Vehicle> vehicle;
-  std::shared_ptr<ChainModel> model;
-  std::unique_ptr<Simulator> sim;
-};
+using Tow = test::VehicleTow;
 
 WinchParams testWinch()
 {
