@@ -16,6 +16,15 @@ namespace tow_sim
 {
 namespace test
 {
+// dopri5 at absolute and relative tolerance `tol`: the tight reference the steppers are compared with.
+inline NumericsParams dopri5(double tol)
+{
+  NumericsParams n;
+  n.stepper = StepperType::kDopri5;
+  n.abs_tol = n.rel_tol = tol;
+  return n;
+}
+
 // scenarios/NAME.yaml of the source tree.
 inline Scenario shippedScenario(const std::string& name)
 {

@@ -24,14 +24,7 @@ namespace tow_sim
 {
 namespace
 {
-NumericsParams dopri5(double tol)
-{
-  NumericsParams n;
-  n.stepper = StepperType::kDopri5;
-  n.abs_tol = tol;
-  n.rel_tol = tol;
-  return n;
-}
+using test::dopri5;
 
 NumericsParams implicitAdaptive()
 {

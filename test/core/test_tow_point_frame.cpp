@@ -73,13 +73,7 @@ NumericsParams implicitIn(ImplicitFrame frame, double max_step = 10.0)
   return n;
 }
 
-NumericsParams dopri5(double tol)
-{
-  NumericsParams n;
-  n.stepper = StepperType::kDopri5;
-  n.abs_tol = n.rel_tol = tol;
-  return n;
-}
+using test::dopri5;
 }  // namespace
 
 // Measured (2026-12-06): world 65 and 120 steps at nu = 100 and 400, tow_point 52 and 51; at nu = 400 the
