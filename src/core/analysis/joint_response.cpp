@@ -88,14 +88,20 @@ JointLinearisation lineariseJoints(const ChainModel& model, const ChainGeometry&
   return L;
 }
 
-// A_XY = lambda^2 M_XY - lambda D_XY - K_XY of element i: (P53b)'s operator on the joints' amplitudes X e^(lambda t)
-// (lambda = i w for a harmonic motion).
-Eigen::Matrix<C, 6, 6> harmonicBlock(const JointLinearisation& L, size_t i, C lambda)
+// Element i's projected inertia M_XY as one 6 x 6 matrix over (forward, aft).
+Matrix6d massOf(const JointLinearisation& L, size_t i)
 {
   const ElementTerms& M = L.terms[i];
   Matrix6d mass;
   mass << M.M_ff, M.M_fa, M.M_af, M.M_aa;
-  return (lambda * lambda) * mass.cast<C>() - lambda * L.D[i].cast<C>() - L.K[i].cast<C>();
+  return mass;
+}
+
+// A_XY = lambda^2 M_XY - lambda D_XY - K_XY of element i: (P53b)'s operator on the joints' amplitudes X e^(lambda t)
+// (lambda = i w for a harmonic motion).
+Eigen::Matrix<C, 6, 6> harmonicBlock(const JointLinearisation& L, size_t i, C lambda)
+{
+  return (lambda * lambda) * massOf(L, i).cast<C>() - lambda * L.D[i].cast<C>() - L.K[i].cast<C>();
 }
 
 // The unknowns of (P53b) at one lambda: the joints' amplitudes X_2 .. X_{nu+2} (3 each) and each element's
@@ -187,8 +193,7 @@ JointMatrices jointMatrices(const JointLinearisation& L)
   for (Eigen::Index e = 0; e < n; ++e)
   {
     const size_t i = static_cast<size_t>(e);
-    Matrix6d mass;
-    mass << L.terms[i].M_ff, L.terms[i].M_fa, L.terms[i].M_af, L.terms[i].M_aa;
+    const Matrix6d mass = massOf(L, i);
     for (int row = 0; row < 6; ++row)
       for (int col = 0; col < 6; ++col)
       {
