@@ -17,7 +17,7 @@ import sys
 
 LIBRARIES = ["core", "config", "scenario", "ros"]
 LAYERS = [
-    ["constants", "geometry", "param_table", "angle_grid", "cable_loading", "survey_measurement", "layback_rules", "survey_row_queue"],
+    ["constants", "attitude", "geometry", "param_table", "angle_grid", "cable_loading", "survey_measurement", "layback_rules", "survey_row_queue"],
     ["waves", "params", "param_tables", "numeric_csv", "tension_limits", "measurement_csv"],
     ["fins", "seabed", "element", "ship_response"],
     ["added_mass", "vehicle"],

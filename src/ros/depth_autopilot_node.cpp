@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "tow_sim/FinCommand.h"
+#include "tow_sim/core/attitude.h"
 #include "tow_sim/ros/conversions.h"
 
 namespace tow_sim
@@ -146,7 +147,7 @@ void DepthAutopilotNode::onVehicleOdometry(const nav_msgs::Odometry::ConstPtr& m
     m.p_W = Eigen::Vector3d(p.x, p.y, p.z);
     m.v_W = q.normalized() * Eigen::Vector3d(v.x, v.y, v.z);  // the twist is in the vehicle frame
     const Eigen::Matrix3d R = q.normalized().toRotationMatrix();
-    m.roll = std::atan2(R(2, 1), R(2, 2));  // REP-103: yaw, pitch, then roll about x_b
+    m.roll = eulerOf(R).roll;  // REP-103: yaw, pitch, then roll about x_b
     m.roll_rate = msg->twist.twist.angular.x;
     // Altitude from the newest cable/state of the same moment (within 0.5 s), moved by the depth change
     // since (a flat bottom over that short time).

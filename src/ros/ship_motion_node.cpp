@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "tow_sim/config/config.h"
+#include "tow_sim/core/attitude.h"
 #include "tow_sim/ros/conversions.h"
 
 namespace tow_sim
@@ -94,7 +95,7 @@ void ShipMotionNode::publish(const ros::Time& now)
 {
   const ShipRigidMotion m = scriptedShipMotion(now.toSec(), ship_->x(), ship_->y(), ship_->heading(), ship_->speed(),
                                                ship_->yawRate(), waves_.get(), rao_.get());
-  const Eigen::Matrix3d R = shipRotation(m.roll, m.pitch, m.yaw);
+  const Eigen::Matrix3d R = rotationFromEuler(m.roll, m.pitch, m.yaw);
   const Eigen::Quaterniond q(R);
   const Eigen::Vector3d v_S = R.transpose() * m.v_W, w_S = R.transpose() * shipAngularVelocity(m);
   nav_msgs::Odometry odom;

@@ -12,6 +12,7 @@
 #include <cmath>
 
 #include "tow_sim/SensorValue.h"
+#include "tow_sim/core/attitude.h"
 #include "tow_sim/ros/conversions.h"
 
 namespace tow_sim
@@ -51,9 +52,7 @@ sensor_msgs::Imu toImu(const std_msgs::Header& header, const SurveyMeasurement& 
   sensor_msgs::Imu imu;
   imu.header = header;
   const double roll = std::isfinite(m.fish_roll) ? m.fish_roll : 0.0;
-  imu.orientation = ros_conv::toQuaternion(Eigen::AngleAxisd(m.fish_heading, Eigen::Vector3d::UnitZ()) *
-                                           Eigen::AngleAxisd(m.fish_pitch, Eigen::Vector3d::UnitY()) *
-                                           Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()));
+  imu.orientation = ros_conv::toQuaternion(Eigen::Quaterniond(rotationFromEuler(roll, m.fish_pitch, m.fish_heading)));
   const double roll_var = std::pow(params.ahrs_roll_noise, 2), pitch = std::pow(params.ahrs_pitch_noise, 2),
                yaw = std::pow(params.ahrs.noise, 2);
   imu.orientation_covariance = { roll_var, 0.0, 0.0, 0.0, pitch, 0.0, 0.0, 0.0, yaw };

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "tow_sim/core/attitude.h"
 #include "tow_sim/ros/gnss_ship_node.h"
 
 namespace tow_sim
@@ -200,12 +201,11 @@ std::string SurveyRows::imu(const sensor_msgs::Imu& msg)
   if (!(std::isfinite(n) && std::abs(n - 1.0) < 0.01))
     return refuse(outOfRange("orientation: |q|", n, 0.99, 1.01, "-"));
   const Eigen::Matrix3d R = Eigen::Quaterniond(q.w, q.x, q.y, q.z).normalized().toRotationMatrix();
-  const double yaw = std::atan2(R(1, 0), R(0, 0)), pitch = std::asin(std::clamp(-R(2, 0), -1.0, 1.0));
-  const double roll = std::atan2(R(2, 1), R(2, 2));
+  const EulerAngles a = eulerOf(R);
   if (msg.header.stamp.isZero())
     return refuse("header.stamp is zero: an attitude needs the instant it measures");
   queue_.add(timeOf(msg.header.stamp),
-             [&](SurveyMeasurement& m) { m.fish_heading = yaw, m.fish_pitch = pitch, m.fish_roll = roll; });
+             [&](SurveyMeasurement& m) { m.fish_heading = a.yaw, m.fish_pitch = a.pitch, m.fish_roll = a.roll; });
   // Its variances, where it gives them (sensor_msgs/Imu: zeros are "unknown").
   for (int axis = 0; axis < 3; ++axis)
   {

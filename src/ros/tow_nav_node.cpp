@@ -9,6 +9,7 @@
 
 #include "tow_sim/config/config.h"
 #include "tow_sim/config/nav_params.h"
+#include "tow_sim/core/attitude.h"
 #include "tow_sim/ros/conversions.h"
 
 namespace tow_sim
@@ -194,9 +195,7 @@ void TowNavNode::publish(const TowNavEstimate& e)
   pose.header = header;
   pose.pose.pose.position = ros_conv::toPoint(e.p_W);
   pose.pose.pose.orientation = ros_conv::toQuaternion(
-      attitude ? Eigen::Quaterniond(Eigen::AngleAxisd(fish_yaw_, Eigen::Vector3d::UnitZ()) *
-                                    Eigen::AngleAxisd(fish_pitch_, Eigen::Vector3d::UnitY()) *
-                                    Eigen::AngleAxisd(rolled ? fish_roll_ : 0.0, Eigen::Vector3d::UnitX()))
+      attitude ? Eigen::Quaterniond(rotationFromEuler(rolled ? fish_roll_ : 0.0, fish_pitch_, fish_yaw_))
                : Eigen::Quaterniond::Identity());
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c)

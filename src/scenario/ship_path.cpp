@@ -6,6 +6,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "tow_sim/core/attitude.h"
 #include "tow_sim/core/constants.h"
 #include "tow_sim/core/environment/ship_response.h"
 #include "tow_sim/core/io/numeric_csv.h"
@@ -54,7 +55,7 @@ ShipHistory replayedPath(const Scenario& sc)
   {
     yaw[i] = i == 0 ? m[0].yaw : yaw[i - 1] + std::remainder(m[i].yaw - m[i - 1].yaw, 2.0 * kPi);
     roll[i] = i == 0 ? m[0].roll : roll[i - 1] + std::remainder(m[i].roll - m[i - 1].roll, 2.0 * kPi);
-    tow[i] = Eigen::Vector3d(m[i].x, m[i].y, m[i].z) + shipRotation(roll[i], m[i].pitch, yaw[i]) * sc.tow_point_S;
+    tow[i] = Eigen::Vector3d(m[i].x, m[i].y, m[i].z) + rotationFromEuler(roll[i], m[i].pitch, yaw[i]) * sc.tow_point_S;
   }
   for (size_t i = 0; i < n; ++i)
   {

@@ -9,6 +9,7 @@
 #include <cstdio>
 
 #include "core/temp_file.h"
+#include "tow_sim/core/attitude.h"
 #include "tow_sim/core/constants.h"
 #include "tow_sim/core/environment/ship_response.h"
 #include "tow_sim/core/run/odometry_check.h"
@@ -87,6 +88,25 @@ TEST(ShipResponse, TheTowPointOfAHeavingRollingPitchingShipIsTheLeverArms)
   m.roll = 0.1;
   towPointOf(m, Eigen::Vector3d(0.0, 5.0, 0.0), p, v);
   EXPECT_NEAR(p.z(), 5.0 * std::sin(0.1), 1e-12);
+}
+
+// The REP-103 Z-Y-X helpers (attitude.h): the rotation is Rz Ry Rx written out here by hand, its angles come
+// back from eulerOf over the whole range (pitch short of +-pi/2), and a nose-down pitch puts the bow down.
+TEST(ShipResponse, TheEulerHelpersAreRzRyRxAndTheirInverse)
+{
+  for (double roll : { -2.9, -0.2, 0.0, 0.4, 3.0 })
+    for (double pitch : { -1.5, -0.1, 0.0, 0.7, 1.5 })
+      for (double yaw : { -3.1, -1.0, 0.0, 0.7, 2.5 })
+      {
+        const Eigen::Matrix3d R = rotationFromEuler(roll, pitch, yaw);
+        EXPECT_LT((R - rotZ(yaw) * rotY(pitch) * rotX(roll)).norm(), 1e-14) << roll << " " << pitch << " " << yaw;
+        const EulerAngles a = eulerOf(R);
+        EXPECT_NEAR(a.roll, roll, 1e-12);
+        EXPECT_NEAR(a.pitch, pitch, 1e-12);
+        EXPECT_NEAR(a.yaw, yaw, 1e-12);
+      }
+  EXPECT_NEAR((rotationFromEuler(0.0, 0.3, 0.0) * Eigen::Vector3d::UnitX()).z(), -std::sin(0.3), 1e-15);
+  EXPECT_NEAR((rotationFromEuler(0.3, 0.0, 0.0) * Eigen::Vector3d::UnitY()).z(), std::sin(0.3), 1e-15);
 }
 
 // The node's tow point from odometry (checkOdometry) takes the full pose: z, roll and pitch move it by the

@@ -1,5 +1,6 @@
 #include "tow_sim/core/environment/ship_response.h"
 
+#include "tow_sim/core/attitude.h"
 #include "tow_sim/core/constants.h"
 #include "tow_sim/core/io/numeric_csv.h"
 
@@ -214,14 +215,6 @@ ShipRigidMotion scriptedShipMotion(double t, double x, double y, double heading,
   return m;
 }
 
-Eigen::Matrix3d shipRotation(double roll, double pitch, double yaw)
-{
-  // As matrices (not quaternions): with roll = pitch = 0 this is exactly the heading's rotation.
-  return Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix() *
-         Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()).toRotationMatrix() *
-         Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()).toRotationMatrix();
-}
-
 Eigen::Vector3d shipAngularVelocity(const ShipRigidMotion& m)
 {
   const Eigen::Matrix3d Rz = Eigen::AngleAxisd(m.yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
@@ -232,7 +225,7 @@ Eigen::Vector3d shipAngularVelocity(const ShipRigidMotion& m)
 
 void towPointOf(const ShipRigidMotion& m, const Eigen::Vector3d& r_S, Eigen::Vector3d& p_W, Eigen::Vector3d& v_W)
 {
-  const Eigen::Vector3d arm = shipRotation(m.roll, m.pitch, m.yaw) * r_S;
+  const Eigen::Vector3d arm = rotationFromEuler(m.roll, m.pitch, m.yaw) * r_S;
   p_W = m.p_W + arm;
   v_W = m.v_W + shipAngularVelocity(m).cross(arm);
 }

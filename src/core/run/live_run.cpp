@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "tow_sim/core/attitude.h"
 #include "tow_sim/core/constants.h"
 
 namespace tow_sim
@@ -103,7 +104,7 @@ ShipPose LiveRun::poseOf(const OdometryInput& in, const OdometryResult& r) const
   pose.heading = x_axis.head<2>().norm() > 1e-6 ? std::atan2(x_axis.y(), x_axis.x()) : newestShipPose().heading;
   pose.speed = (r.q_WS * in.v_S).head<2>().norm();
   pose.pitch = pitchOf(R.col(0));
-  pose.roll = std::atan2(R(2, 1), R(2, 2));
+  pose.roll = eulerOf(R).roll;
   return pose;
 }
 

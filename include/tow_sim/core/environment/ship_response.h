@@ -85,8 +85,8 @@ struct ShipRigidMotion
 ShipRigidMotion scriptedShipMotion(double t, double x, double y, double heading, double speed, double yaw_rate,
                                    const WaveField* waves, const RaoTable* rao);
 
-// The rotation R_WS and the ship's angular velocity in the world frame from the Euler angles and rates.
-Eigen::Matrix3d shipRotation(double roll, double pitch, double yaw);
+// The ship's angular velocity in the world frame from the Euler angles and rates (its rotation R_WS:
+// rotationFromEuler, attitude.h).
 Eigen::Vector3d shipAngularVelocity(const ShipRigidMotion& m);
 
 // The tow point r_S (ship frame, FLU) of a ship moving so: position p + R r_S and velocity v + w x (R r_S).
