@@ -166,9 +166,13 @@ void compare(const char* sea, const Scenario& sc, const double (&spread)[kSeaSta
       continue;
     }
     if (spread[j] >= 0.0)
+    {
       EXPECT_NEAR(f.standard_deviation[j], run, spread[j] * run) << SeaStateResponse::names[j];
+    }
     if (shape[j] >= 0.0)
+    {
       EXPECT_LT(m, shape[j]) << SeaStateResponse::names[j];
+    }
   }
 }
 
