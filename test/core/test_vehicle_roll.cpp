@@ -94,11 +94,13 @@ class RollPeriod : public ::testing::TestWithParam<StepperType>
 {
 };
 
-// Nothing on the axis rolls the vehicle (hull, fins at their axis, tension at the bail): a small roll swings on
-// the buoyancy's arm alone, T = 2 pi sqrt((I_xx + I_a) / (rho g V h_BG cos theta)), theta the axis' pitch.
+// Nothing on the axis rolls the vehicle (hull, fins at the axis: no elevator span, tension at the bail): a small
+// roll swings on the buoyancy's arm alone, T = 2 pi sqrt((I_xx + I_a) / (rho g V h_BG cos theta)), theta the
+// axis' pitch.
 TEST_P(RollPeriod, IsTheMetacentricClosedForm)
 {
-  const VehicleParams p = rollingVehicle();
+  VehicleParams p = rollingVehicle();
+  p.elevator_span = 0.0;  // fins at the axis: the spin does not move them (P57b)
   Tow tow = steadyTow(p, GetParam());
   tow.sim->advanceTo(30.0);
   setRoll(tow, 0.05, 0.0);
@@ -200,6 +202,7 @@ TEST(VehicleRoll, ASteadyTurnHeelsItByTheRollDampingOfItsSpin)
 {
   VehicleParams p = rollingVehicle();
   p.roll_damping = 300.0;
+  p.elevator_span = 0.0;  // the fins' own damping (P57b) left out: the hull's c alone
   const double radius = 150.0, rate = 2.0 / radius;
   for (StepperType stepper : { StepperType::kDopri5, StepperType::kImplicit })
   {
@@ -216,6 +219,103 @@ TEST(VehicleRoll, ASteadyTurnHeelsItByTheRollDampingOfItsSpin)
     EXPECT_NEAR(o.omega_W.z(), rate, 1e-3 * rate);  // the turn is steady
     EXPECT_LT(o.roll, 0.0);
     EXPECT_NEAR(o.roll, expected, 0.01 * std::abs(expected));
+  }
+}
+
+// The fins' own roll damping (P57b). In a flow along the axis (each fin's inflow angle zero) the spin p moves an
+// elevator fin at span b by -+p b z_b: its angle of attack changes by +-p b / V and its force normal to the axis
+// by (C/2) (F_L'(0) + F_D(0)) V p b (half the pair's constants C5, C6 each), so the pair's roll moment is
+// -(C5 F_L'(0) + C6 F_D(0)) V b^2 p and its net force zero; the rudder at h_r above the axis likewise gives
+// -(C3 F_L'(0) + C4 F_D(0)) V h_r^2 p, with a side force (C3 F_L'(0) + C4 F_D(0)) V h_r p along y_b. With the
+// default tables F_L'(0) = 1 and F_D(0) = 0.02 (the drag's own slope at zero multiplies the inflow angle, zero).
+double finRollDamping(const VehicleParams& p, double speed)
+{
+  return (p.elevator.lift_constant + 0.02 * p.elevator.drag_constant) * speed * p.elevator_span * p.elevator_span +
+         (p.rudder.lift_constant + 0.02 * p.rudder.drag_constant) * speed * p.rudder_height * p.rudder_height;
+}
+
+// The fins' loads on a level vehicle moving at 2 m/s along its axis (+x), spinning at p and not: the roll
+// moment's change per unit spin against the linearisation above, for the elevator at its span and the rudder
+// above the axis.
+TEST(VehicleRoll, TheFinsRollMomentOfASpinIsTheirLinearisedLiftAndDrag)
+{
+  struct Case
+  {
+    double span, rudder_height;
+  };
+  for (const Case& fins : { Case{ 0.25, 0.0 }, Case{ 0.0, 0.15 }, Case{ 0.3, -0.2 } })
+  {
+    VehicleParams p = rollingVehicle();
+    p.elevator_span = fins.span;
+    p.rudder_height = fins.rudder_height;
+    const Vehicle vehicle(p);
+    const Environment env;
+    const Eigen::Vector3d v(2.0, 0.0, 0.0);
+    auto at = [&](double spin)
+    {
+      ElementKinematics k =
+          ElementKinematics::fromJoints(Eigen::Vector3d::Zero(), Eigen::Vector3d(-p.tail_from_bail, 0.0, 0.0), v, v);
+      k.roll_rate = spin;
+      return vehicle.outputs(0.0, k, env, vehicle.restingActuators(0.0));
+    };
+    const VehicleOutputs still = at(0.0);
+    const double spin = 1e-4;
+    const VehicleOutputs spinning = at(spin);
+    auto roll_moment = [](const VehicleOutputs& o)
+    { return (o.rudder_loads.moment_cg_W + o.elevator_loads.moment_cg_W).x(); };
+    const double per_spin = (roll_moment(spinning) - roll_moment(still)) / spin;
+    const double side = (spinning.rudder_loads.lift_W + spinning.rudder_loads.drag_W).y() / spin;
+    const double expected_side = (p.rudder.lift_constant + 0.02 * p.rudder.drag_constant) * 2.0 * p.rudder_height;
+    std::printf(
+        "span %.2f m, rudder height %.2f m: roll moment per unit spin %.5f N m s/rad, linearised %.5f; "
+        "side force per unit spin %.5f N s/rad, linearised %.5f\n",
+        fins.span, fins.rudder_height, per_spin, -finRollDamping(p, 2.0), side, expected_side);
+    EXPECT_NEAR(per_spin, -finRollDamping(p, 2.0), 1e-4 * finRollDamping(p, 2.0));
+    EXPECT_NEAR(side, expected_side, 1e-4 * std::abs(expected_side) + 1e-9);
+    // The elevator fins' forces normal to the axis cancel (along it both fins' drag grows with |alpha|: the
+    // default drag table's kink at zero).
+    const Eigen::Vector3d elevator_change = spinning.elevator_loads.lift_W + spinning.elevator_loads.drag_W -
+                                            still.elevator_loads.lift_W - still.elevator_loads.drag_W;
+    EXPECT_LT(elevator_change.tail<2>().norm() / spin, 1e-3);
+  }
+}
+
+// The same damping in motion. A vehicle hung at its CG (bail, CG and CB at one station) tows level with its axis
+// along the flow, so each fin's inflow angle is zero at rest, and the elevator's forces from a spin cancel: a
+// small roll decays as the damped oscillator (I_xx + I_a) phi'' + c phi' + rho g V h_BG phi = 0 with c above,
+// phi = phi_0 exp(-sigma t) (cos(w_d t) + sigma / w_d sin(w_d t)), sigma = c / (2 I), w_d^2 = k / I - sigma^2.
+// (The rudder's side force yaws the vehicle, which that oscillator leaves out: the moment test above covers it.)
+TEST(VehicleRoll, TheElevatorsSpanDampsASmallRollAsTheDampedOscillator)
+{
+  for (StepperType stepper : { StepperType::kDopri5, StepperType::kImplicit })
+  {
+    VehicleParams p = rollingVehicle();
+    p.cg_from_bail = p.cb_from_bail = 0.0;
+    p.elevator_span = 0.1;
+    Tow tow = steadyTow(p, stepper);
+    tow.sim->advanceTo(30.0);
+    const double speed = tow.out().v_cg_W.norm();
+    EXPECT_NEAR(tow.out().pitch, 0.0, 1e-4);  // level: the fins' inflow angle is zero
+    const double phi0 = 0.02;
+    setRoll(tow, phi0, 0.0);
+    const Environment& env = tow.sim->data().environment;
+    const double inertia = p.inertia_B(0, 0) + p.roll_added_inertia;
+    const double stiffness = env.water_density * env.gravity * p.displaced_volume * p.cb_above_cg;
+    const double damping = finRollDamping(p, speed);
+    const double sigma = damping / (2.0 * inertia), w_d = std::sqrt(stiffness / inertia - sigma * sigma);
+    double worst = 0.0;
+    for (int i = 1; i <= 1200; ++i)
+    {
+      const double t = i * 0.005;
+      tow.sim->advanceTo(30.0 + t);
+      const double expected = phi0 * std::exp(-sigma * t) * (std::cos(w_d * t) + sigma / w_d * std::sin(w_d * t));
+      worst = std::max(worst, std::abs(tow.out().roll - expected));
+    }
+    std::printf(
+        "elevator span 0.1 m: c = %.3f N m s/rad, damping ratio %.3f; largest difference from the damped "
+        "oscillator over 6 s %.2e rad (%.3f %% of the initial roll)\n",
+        damping, damping / (2.0 * std::sqrt(stiffness * inertia)), worst, 100.0 * worst / phi0);
+    EXPECT_LT(worst, 1e-3 * phi0);
   }
 }
 
@@ -248,14 +348,16 @@ TEST(VehicleRoll, TheDifferentialElevatorRollsItToPort)
 }
 
 // The autopilot's roll hold with roll_kp alone adds kp b C_L |v|^2 to the roll's stiffness (the differential's
-// moment per radian in the fins' linear range): a small roll swings at 2 pi sqrt((I_xx + I_a) / (rho g V h_BG
-// cos theta + kp b C_L |v|^2)), ticking at 200 Hz.
+// moment per radian in the fins' linear range), ticking at 200 Hz. On the level vehicle of the test above (the
+// fins' inflow angle zero) the fins also damp the spin by c (finRollDamping): a small roll swings at
+// 2 pi / sqrt((rho g V h_BG + kp b C_L |v|^2) / (I_xx + I_a) - sigma^2), sigma = c / (2 (I_xx + I_a)).
 TEST(VehicleRoll, TheAutopilotsRollHoldStiffensTheRollByItsGain)
 {
   SimulationConfig c;
   c.cable.length = 100.0;
   c.cable.segments = 20;
   c.vehicle = rollingVehicle();
+  c.vehicle.cg_from_bail = c.vehicle.cb_from_bail = 0.0;
   auto ship = test::steamingShip(Eigen::Vector2d::Zero(), 0.0, 100);
   AutopilotLoop loop;
   loop.enabled = true;
@@ -273,20 +375,23 @@ TEST(VehicleRoll, TheAutopilotsRollHoldStiffensTheRollByItsGain)
   run.restore(state);
   const double dt = 0.005;
   std::vector<double> roll;
-  for (int i = 1; i <= 1600; ++i)
+  for (int i = 1; i <= 500; ++i)  // 2.5 s: the damped swing's first three periods
   {
     run.advanceTo(30.0 + i * dt);
     roll.push_back(run.snapshot().roll);
   }
   const TowSnapshot s = run.snapshot();
   const VehicleParams& p = c.vehicle;
-  const double restoring =
-      c.environment.water_density * c.environment.gravity * p.displaced_volume * p.cb_above_cg * std::cos(s.pitch);
-  const double held = loop.params.roll_kp * p.elevator_span * p.elevator.lift_constant * s.vehicle.v_cg_W.squaredNorm();
-  const double expected = 2.0 * kPi * std::sqrt((p.inertia_B(0, 0) + p.roll_added_inertia) / (restoring + held));
+  EXPECT_NEAR(s.pitch, 0.0, 1e-4);  // level
+  const double restoring = c.environment.water_density * c.environment.gravity * p.displaced_volume * p.cb_above_cg;
+  const double speed = s.vehicle.v_cg_W.norm(), inertia = p.inertia_B(0, 0) + p.roll_added_inertia;
+  const double held = loop.params.roll_kp * p.elevator_span * p.elevator.lift_constant * speed * speed;
+  const double sigma = finRollDamping(p, speed) / (2.0 * inertia);
+  const double expected = 2.0 * kPi / std::sqrt((restoring + held) / inertia - sigma * sigma);
   const double period = meanPeriod(roll, dt);
-  std::printf("roll hold: period %.5f s, closed form %.5f s (without the hold %.5f s)\n", period, expected,
-              2.0 * kPi * std::sqrt((p.inertia_B(0, 0) + p.roll_added_inertia) / restoring));
+  std::printf("roll hold: period %.5f s, closed form %.5f s (without the hold %.5f s, undamped %.5f s)\n", period,
+              expected, 2.0 * kPi / std::sqrt(restoring / inertia - sigma * sigma),
+              2.0 * kPi * std::sqrt(inertia / (restoring + held)));
   EXPECT_NEAR(period, expected, 0.015 * expected);
 }
 
@@ -399,7 +504,9 @@ TEST(VehicleRoll, TheRollSurvivesARemeshASavedStateAndAParting)
     winch.enabled = true;
     winch.max_length = 300.0;
     winch.segment_max_fraction = split_above;
-    keep = std::make_unique<Tow>(steadyTow(rollingVehicle(), StepperType::kImplicit, nullptr, winch));
+    VehicleParams p = rollingVehicle();
+    p.elevator_span = 0.0;  // undamped: it keeps swinging (P57b)
+    keep = std::make_unique<Tow>(steadyTow(p, StepperType::kImplicit, nullptr, winch));
     setRoll(*keep, 0.05, 0.0);
     keep->sim->setWinchCommand(1.5);
     double late = 0.0;

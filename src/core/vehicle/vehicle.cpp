@@ -32,15 +32,19 @@ Eigen::Vector3d headingHint(const Eigen::Vector3d& v_through_water_W)
 }
 // (P57a): the elevator as its two fins, each with half the pair's constants, the starboard one (span b toward
 // -y_b) at elevator + differential, the port one (+y_b) at elevator - differential; their sum as the pair's
-// loads, the moment with each fin's arm across the axis.
+// loads, the moment with each fin's arm across the axis. (P57b): each fin in the flow at its own point, the
+// spin p moving it by p x_b x (-+b y_b) = -+p b z_b.
 FinPairLoads differentialElevatorLoads(FinPairParams fin, double elevator, double differential,
-                                       const Eigen::Vector3d& v_W, const BodyFrame& f, double arm, double span)
+                                       const Eigen::Vector3d& v_W, const BodyFrame& f, double arm, double span,
+                                       double spin)
 {
   fin.lift_constant *= 0.5;
   fin.drag_constant *= 0.5;
+  const Eigen::Vector3d spin_v = spin * span * f.z;
   const FinPairLoads starboard =
-      finPairLoads(fin, FinPlane::kHorizontal, elevator + differential, v_W, f.x, f.y, f.z, arm);
-  const FinPairLoads port = finPairLoads(fin, FinPlane::kHorizontal, elevator - differential, v_W, f.x, f.y, f.z, arm);
+      finPairLoads(fin, FinPlane::kHorizontal, elevator + differential, v_W - spin_v, f.x, f.y, f.z, arm);
+  const FinPairLoads port =
+      finPairLoads(fin, FinPlane::kHorizontal, elevator - differential, v_W + spin_v, f.x, f.y, f.z, arm);
   FinPairLoads pair = starboard;
   pair.angle = elevator;
   pair.angle_of_attack = 0.5 * (starboard.angle_of_attack + port.angle_of_attack);
@@ -257,7 +261,21 @@ Vehicle::Loads Vehicle::loads(double t, const ElementKinematics& k, const Enviro
   force += thrust_force;
   moment += ((tail - p_.cg_from_bail) * s + p_.thrust_offset_z * frame.z).cross(thrust_force);
 
-  // Fins at their servo angles, in the flow at their own point.
+  finLoads(t, k, current, wet, actuators, frame, out);
+  force += out.rudder_loads.lift_W + out.rudder_loads.drag_W + out.elevator_loads.lift_W + out.elevator_loads.drag_W;
+  moment += out.rudder_loads.moment_cg_W + out.elevator_loads.moment_cg_W;
+  if (rolls())  // (P57): the hull's roll damping against the spin (the fins' own: (P57b))
+    moment -= wet * p_.roll_damping * k.roll_rate * frame.x;
+
+  out.wrench << force, moment;
+  return out;
+}
+
+// The fins at their servo angles, in the flow at their own point (`current` the flow there, `wet` 0 in vacuum).
+void Vehicle::finLoads(double t, const ElementKinematics& k, const Eigen::Vector3d& current, double wet,
+                       const Actuators& actuators, const BodyFrame& frame, Loads& out) const
+{
+  const double tail = p_.tail_from_bail;
   out.rudder = actuators.rudder.angleAt(t);
   out.elevator = actuators.elevator.angleAt(t);
   FinPairParams rudder = p_.rudder, elevator = p_.elevator;
@@ -265,27 +283,25 @@ Vehicle::Loads Vehicle::loads(double t, const ElementKinematics& k, const Enviro
   rudder.drag_constant *= wet;
   elevator.lift_constant *= wet;
   elevator.drag_constant *= wet;
-  const Eigen::Vector3d v_vf = k.velocityAt(p_.vertical_fin_from_bail / tail) - current;
+  // (P57b): a rolling vehicle's spin p moves the rudder's centre of pressure, rudder_height above the axis, by
+  // p x_b x (h_r z_b) = -p h_r y_b, and each elevator fin by its span (differentialElevatorLoads).
+  const double spin = rolls() ? k.roll_rate : 0.0;
+  const Eigen::Vector3d v_vf =
+      k.velocityAt(p_.vertical_fin_from_bail / tail) - current - spin * p_.rudder_height * frame.y;
   const Eigen::Vector3d v_hf = k.velocityAt(p_.horizontal_fin_from_bail / tail) - current;
   out.rudder_loads = finPairLoads(rudder, FinPlane::kVertical, out.rudder, v_vf, frame.x, frame.y, frame.z,
                                   p_.vertical_fin_from_bail - p_.cg_from_bail);
   out.differential = actuators.differential.angleAt(t);
-  if (out.differential == 0.0)
+  if (out.differential == 0.0 && spin == 0.0)
     out.elevator_loads = finPairLoads(elevator, FinPlane::kHorizontal, out.elevator, v_hf, frame.x, frame.y, frame.z,
                                       p_.horizontal_fin_from_bail - p_.cg_from_bail);
   else
-    out.elevator_loads = differentialElevatorLoads(elevator, out.elevator, out.differential, v_hf, frame,
-                                                   p_.horizontal_fin_from_bail - p_.cg_from_bail, p_.elevator_span);
+    out.elevator_loads =
+        differentialElevatorLoads(elevator, out.elevator, out.differential, v_hf, frame,
+                                  p_.horizontal_fin_from_bail - p_.cg_from_bail, p_.elevator_span, spin);
   if (p_.rudder_height != 0.0)  // (P57): the rudder's loads act rudder_height above the axis: its heel moment
     out.rudder_loads.moment_cg_W +=
         (p_.rudder_height * frame.z).cross(out.rudder_loads.lift_W + out.rudder_loads.drag_W);
-  force += out.rudder_loads.lift_W + out.rudder_loads.drag_W + out.elevator_loads.lift_W + out.elevator_loads.drag_W;
-  moment += out.rudder_loads.moment_cg_W + out.elevator_loads.moment_cg_W;
-  if (rolls())  // (P57): the roll damping against the spin
-    moment -= wet * p_.roll_damping * k.roll_rate * frame.x;
-
-  out.wrench << force, moment;
-  return out;
 }
 
 BodyFrame Vehicle::frameAt(const ElementKinematics& k, const Eigen::Vector3d& v_cg_through_water) const
@@ -483,11 +499,12 @@ const ParamTable<VehicleParams>& vehicleParams()
           .number("rudder_height", &V::rudder_height, "m", -10.0, 10.0, kClosed,
                   "the rudder's centre of pressure above the axis: its lift and drag heel the vehicle")
           .number("roll_damping", &V::roll_damping, "N m s/rad", 0.0, 1e9, kClosed,
-                  "linear roll damping against the spin (roll: free)")
+                  "the hull's linear roll damping against the spin (roll: free; the fins' own: physics.md (P57b))")
           .number("roll_added_inertia", &V::roll_added_inertia, "kg m^2", 0.0, 1e9, kClosed,
                   "Approach A's added inertia about x_b (roll: free; Approach B: its matrix's)")
           .number("elevator_span", &V::elevator_span, "m", 0.0, 10.0, kClosed,
-                  "each elevator fin's centre of pressure out from the axis: the differential's roll arm");
+                  "each elevator fin's centre of pressure out from the axis: the differential's roll arm, the spin's "
+                  "lever");
   return table;
 }
 

@@ -177,6 +177,9 @@ private:
   struct Loads;
   Loads loads(double t, const ElementKinematics& k, const Environment& env, const Actuators& actuators,
               const BodyFrame& frame) const;
+  // The rudder's and the elevator's angles and loads into `out`, each fin in the flow at its own point.
+  void finLoads(double t, const ElementKinematics& k, const Eigen::Vector3d& current, double wet,
+                const Actuators& actuators, const BodyFrame& frame, Loads& out) const;
   // Newton-Euler about the CG at the body's roll, the spin's acceleration not yet eliminated.
   void fullDynamics(double t, const ElementKinematics& k, const Environment& env, const Actuators& actuators,
                     BodyDynamics& out) const;
