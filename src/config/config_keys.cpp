@@ -67,7 +67,7 @@ std::map<std::string, std::string> configurationKeys(const SimulationConfig& con
   {
     const BathymetryGrid& g = config.seabed.grid;
     std::map<std::string, std::string> values;
-    char buffer[40];
+    char buffer[128];  // four %.17g numbers take up to 4 x 24 + 3 characters: none may be cut off the hash
     for (Eigen::Index k = 0; k < g.depth.size(); ++k)
     {
       std::snprintf(buffer, sizeof buffer, "%.17g", g.depth.data()[k]);

@@ -162,6 +162,14 @@ TEST(SavedConfiguration, TheSeabedGridIsKeyedByItsContentNotItsPath)
   SimulationConfig edited = sc.config;
   edited.seabed.grid.depth(0, 0) += 1.0;
   EXPECT_NE(configurationKeys(edited).at("seabed.grid"), keys.at("seabed.grid"));
+  // Origins and spacings written at full precision: a grid that differs from another only in its last
+  // spacing's last digits is another seabed (the four numbers once went through a 40-character buffer,
+  // which cut the spacing off behind such origins).
+  SimulationConfig far = sc.config, far_respaced = sc.config;
+  far.seabed.grid.origin = Eigen::Vector2d(-123456.78901234567, 9876543.2109876543);
+  far_respaced.seabed.grid.origin = far.seabed.grid.origin;
+  far_respaced.seabed.grid.spacing.y() = far.seabed.grid.spacing.y() * (1.0 + 1e-12);
+  EXPECT_NE(configurationKeys(far_respaced).at("seabed.grid"), configurationKeys(far).at("seabed.grid"));
 }
 
 }  // namespace
