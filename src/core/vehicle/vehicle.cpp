@@ -48,6 +48,7 @@ FinPairLoads differentialElevatorLoads(FinPairParams fin, double elevator, doubl
   FinPairLoads pair = starboard;
   pair.angle = elevator;
   pair.angle_of_attack = 0.5 * (starboard.angle_of_attack + port.angle_of_attack);
+  pair.inflow_angle = 0.5 * (starboard.inflow_angle + port.inflow_angle);  // angle - angle_of_attack, as a pair's
   pair.lift_W = starboard.lift_W + port.lift_W;
   pair.drag_W = starboard.drag_W + port.drag_W;
   pair.moment_cg_W = starboard.moment_cg_W + port.moment_cg_W +

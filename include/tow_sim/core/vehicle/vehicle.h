@@ -74,7 +74,7 @@ struct VehicleParams
   VehicleRoll roll = VehicleRoll::kFixed;
   double cb_above_cg = 0.0;         // [m] h_BG: the CB above the CG along z_b, [-10, 10]
   double rudder_height = 0.0;       // [m] the rudder's centre of pressure above the axis (+z_b), [-10, 10]
-  double roll_damping = 0.0;        // [N m s/rad] linear, against the spin, [0, 1e9]
+  double roll_damping = 0.0;        // [N m s/rad] the hull's, linear, against the spin, [0, 1e9]
   double roll_added_inertia = 0.0;  // [kg m^2] Approach A's added inertia about x_b, [0, 1e9]
   double elevator_span = 0.25;      // [m] each elevator fin's centre of pressure out from the axis, [0, 10]
 };
