@@ -243,7 +243,7 @@ const ParamTable<DepressorParams>& depressorParams()
                          "for the body's drag and added mass")
           .number("wing_area", &D::wing_area, "m^2", 0.0, 100.0, kClosed, "S of the wing")
           .number("lift_coefficient", &D::lift_coefficient, "-", 0.0, 5.0, kClosed,
-                  "C_L: the lift ½ρ S C_L |w_p|² presses the depressor toward its underside (physics.md (P49a))")
+                  "C_L: the lift ½ρ S C_L |w_p|², normal to the flow, presses the depressor down (physics.md (P49a))")
           .bounded("lift_from_bail", &D::lift_from_bail, "m", along, "0 .. length",
                    "where the lift acts, from the fore attachment");
   return table;

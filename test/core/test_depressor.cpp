@@ -83,11 +83,11 @@ TEST(Depressor, ItsTensionsDifferByItsWeightAndLiftAndItLiesAlongTheirMean)
     const Eigen::Matrix3Xd x = withTowPoint(eq.state.x);
     const Eigen::Vector3d s = (x.col(kDepressor + 1) - x.col(kDepressor)).normalized();
     // The lift by hand: the water passes the body at -u; its part in the plane of symmetry (normal to the
-    // horizontal y_b = z x s) gives 1/2 rho S C_L |w_p|^2, normal to w_p, toward the underside (away from s x y_b).
+    // horizontal y_b = z x s) gives 1/2 rho S C_L |w_p|^2, normal to w_p, on the side that points down.
     const Eigen::Vector3d y_b = Eigen::Vector3d::UnitZ().cross(s).normalized();
     const Eigen::Vector3d w = c.current - u, w_p = w - w.dot(y_b) * y_b;
     Eigen::Vector3d down = y_b.cross(w_p).normalized();
-    if (down.dot(s.cross(y_b)) > 0.0)
+    if (down.z() > 0.0)
       down = -down;
     const Eigen::Vector3d L = 0.5 * env.water_density * 1.0 * lift * w_p.squaredNorm() * down;
     const double weight = (500.0 - env.water_density * 0.05) * env.gravity;
@@ -117,6 +117,40 @@ TEST(Depressor, ItsTensionsDifferByItsWeightAndLiftAndItLiesAlongTheirMean)
     else  // yawed toward the flow across the track: its lift from the larger flow through the water
       EXPECT_GT(std::abs(s.y()), 0.05);
   }
+}
+
+// A depressor hanging steeply across the flow (its axis 68 degrees below the horizontal, as a heavy one on a short
+// bridle does) in a flow that tilts from horizontal to 45 degrees upward, through the direction normal to its
+// axis (21.8 degrees): the lift stays 1/2 rho S C_L U^2 normal to the flow and pointing down, (-sin b, 0, -cos b)
+// for a flow U (-cos b, 0, sin b), and so continuous. ((P49a) once took the side against the axis' upward normal,
+// which flipped the lift there: a jump of twice the lift that a steep depressor heaving in a sea crossed.)
+TEST(Depressor, ItsLiftPointsDownAndTurnsSmoothlyThroughTheFlowNormalToItsAxis)
+{
+  DepressorParams p;
+  p.length = 2.0;
+  p.wing_area = 1.0;
+  p.lift_coefficient = 1.0;
+  const Depressor depressor(p, NumericsParams());
+  const Eigen::Vector3d s = Eigen::Vector3d(-std::cos(68.0 * kPi / 180.0), 0.0, -std::sin(68.0 * kPi / 180.0));
+  const ElementKinematics k =
+      ElementKinematics::fromJoints(Eigen::Vector3d::Zero(), 2.0 * s, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());
+  const double rho = 1025.0, speed = 2.0, full = 0.5 * rho * 1.0 * 1.0 * speed * speed;
+  double worst = 0.0, largest_step = 0.0;
+  Eigen::Vector3d previous = Eigen::Vector3d::Zero();
+  for (int i = 0; i <= 900; ++i)
+  {
+    const double b = 0.05 * i * kPi / 180.0;  // the flow's upward tilt, 0 .. 45 degrees
+    const Eigen::Vector3d flow = speed * Eigen::Vector3d(-std::cos(b), 0.0, std::sin(b));  // the body at rest
+    const Eigen::Vector3d lift = depressor.lift(k, flow, rho);
+    worst = std::max(worst, (lift - full * Eigen::Vector3d(-std::sin(b), 0.0, -std::cos(b))).norm());
+    if (i > 0)
+      largest_step = std::max(largest_step, (lift - previous).norm());
+    previous = lift;
+  }
+  std::printf("lift through the axis-normal flow: largest error %.2e N of %.0f N; largest change per 0.05 deg %.3f N\n",
+              worst, full, largest_step);
+  EXPECT_LT(worst, 1e-9 * full);
+  EXPECT_LT(largest_step, 1e-3 * full);  // 0.05 degrees turn it by 8.7e-4 of itself
 }
 
 TEST(Depressor, StartedAtItsEquilibriumTheTowStaysThere)

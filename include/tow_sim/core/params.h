@@ -101,7 +101,7 @@ struct EndElementParams
 struct DepressorParams : EndElementParams
 {
   double wing_area = 0.0;         // [m^2] S, >= 0 .. 100
-  double lift_coefficient = 0.0;  // [-] C_L, >= 0 .. 5: lift 1/2 rho S C_L |u_p|^2 toward the body's underside
+  double lift_coefficient = 0.0;  // [-] C_L, >= 0 .. 5: lift 1/2 rho S C_L |u_p|^2, normal to the flow, downward
   double lift_from_bail = 1.0;    // [m] where the lift acts, 0 .. length
 };
 

@@ -213,7 +213,7 @@ Eigen::Vector3d Depressor::lift(const ElementKinematics& k, const Eigen::Vector3
   if (speed < kTinySpeed)
     return Eigen::Vector3d::Zero();
   Eigen::Vector3d down = y_b.cross(w_p) / speed;  // normal to w_p in the plane of symmetry
-  if (down.dot(k.s.cross(y_b)) > 0.0)
+  if (down.z() > 0.0)                             // (P49a): the side of the flow that points down
     down = -down;
   return (0.5 * water_density * p_.wing_area * p_.lift_coefficient * speed * speed) * down;
 }

@@ -199,7 +199,7 @@ private:
 // A winged depressor in line in the cable (physics.md §11, (P49a)): the rigid end element's body between a fore
 // and an aft attachment, plus a wing's lift 1/2 rho S C_L |w_p|^2 at lift_from_bail, normal to w_p (the water's
 // velocity relative to the body, less its component along the body's horizontal lateral axis y_b = z x s) in the
-// body's plane of symmetry, toward the body's underside (away from n_b = s x y_b, which points up).
+// body's plane of symmetry, on the side that points down.
 class Depressor
 {
 public:
